@@ -1,0 +1,128 @@
+//! The contract every acceleration structure fulfils, and the enum that picks one at run time.
+
+use crate::{Aabb, BruteForce, Ray};
+use std::fmt;
+use std::str::FromStr;
+
+/// Work counters of one or more queries; the cost a structure saves is read off these.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraversalStats {
+    /// Interior nodes or cells whose bounds were tested.
+    pub nodes_visited: u64,
+    /// Calls of the leaf test.
+    pub primitives_tested: u64,
+}
+
+impl std::ops::AddAssign for TraversalStats {
+    fn add_assign(&mut self, other: Self) {
+        self.nodes_visited += other.nodes_visited;
+        self.primitives_tested += other.primitives_tested;
+    }
+}
+
+/// A structure over primitive bounding boxes that answers ray queries through a leaf test.
+///
+/// Every implementation must report the same hits as [`BruteForce`]: for closest hit, the leaf
+/// test is called, with a shrinking `t_max`, on at least every primitive whose box the ray
+/// enters before `t_max`; for any hit, on every such primitive until the leaf test says stop.
+pub trait Accelerator {
+    /// Closest hit along `ray` in `(0, t_max)`.
+    ///
+    /// `leaf(i, &mut t_max)` intersects primitive `i`; on a hit nearer than `t_max` it sets
+    /// `t_max` to the hit's distance and returns `true`. Returns whether any leaf test did.
+    fn closest_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
+    where
+        F: FnMut(u32, &mut f32) -> bool;
+
+    /// Any hit along `ray` in `(0, t_max)`: `leaf(i)` returns `true` to stop the traversal
+    /// (primitive `i` blocks the ray). Returns whether a leaf test stopped it.
+    fn any_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
+    where
+        F: FnMut(u32) -> bool;
+}
+
+/// The structures a user can choose from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AccelKind {
+    /// Every primitive tested for every ray: the lecture notes' loop, and the oracle.
+    #[default]
+    BruteForce,
+}
+
+impl AccelKind {
+    /// Every kind, in the order a table lists them.
+    pub const ALL: [AccelKind; 1] = [AccelKind::BruteForce];
+
+    /// The name used on the command line and in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            AccelKind::BruteForce => "brute",
+        }
+    }
+
+    /// Builds this structure over `boxes` (primitive `i` has box `boxes[i]`).
+    pub fn build(self, boxes: &[Aabb]) -> AnyAccelerator {
+        match self {
+            AccelKind::BruteForce => AnyAccelerator::BruteForce(BruteForce::new(boxes)),
+        }
+    }
+}
+
+impl fmt::Display for AccelKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for AccelKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        AccelKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<_> = AccelKind::ALL.iter().map(|k| k.name()).collect();
+                format!(
+                    "unknown accelerator '{s}' (expected one of: {})",
+                    names.join(", ")
+                )
+            })
+    }
+}
+
+/// One built structure of any kind; static dispatch through `match`.
+#[derive(Clone, Debug)]
+pub enum AnyAccelerator {
+    /// See [`BruteForce`].
+    BruteForce(BruteForce),
+}
+
+impl AnyAccelerator {
+    /// Which kind this is.
+    pub fn kind(&self) -> AccelKind {
+        match self {
+            AnyAccelerator::BruteForce(_) => AccelKind::BruteForce,
+        }
+    }
+}
+
+impl Accelerator for AnyAccelerator {
+    fn closest_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
+    where
+        F: FnMut(u32, &mut f32) -> bool,
+    {
+        match self {
+            AnyAccelerator::BruteForce(a) => a.closest_hit(ray, t_max, stats, leaf),
+        }
+    }
+
+    fn any_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
+        match self {
+            AnyAccelerator::BruteForce(a) => a.any_hit(ray, t_max, stats, leaf),
+        }
+    }
+}

@@ -1,0 +1,30 @@
+//! A ray with its reciprocal direction precomputed for box tests.
+
+use glam::Vec3;
+
+/// The half-line `origin + t · dir`, `t > 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Where the ray starts.
+    pub origin: Vec3,
+    /// Its direction; not necessarily of unit length.
+    pub dir: Vec3,
+    /// `1 / dir` per component (infinite where a component is zero), for slab tests.
+    pub inv_dir: Vec3,
+}
+
+impl Ray {
+    /// A ray from `origin` along `dir`.
+    pub fn new(origin: Vec3, dir: Vec3) -> Self {
+        Self {
+            origin,
+            dir,
+            inv_dir: dir.recip(),
+        }
+    }
+
+    /// The point at parameter `t`.
+    pub fn at(&self, t: f32) -> Vec3 {
+        self.origin + t * self.dir
+    }
+}

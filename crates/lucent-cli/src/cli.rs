@@ -1,0 +1,85 @@
+//! The command line: subcommands and their flags.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use lucent::accel::AccelKind;
+use std::path::PathBuf;
+
+/// lucent: a ray tracer for learning, teaching and using ray tracing.
+#[derive(Debug, Parser)]
+#[command(name = "lucent", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene to an image (the built-in Whitted scene when none is given).
+    Render(RenderArgs),
+    /// Print what a scene holds: objects, triangles, lights, materials and bounds.
+    Info(InfoArgs),
+}
+
+/// Integrators selectable on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IntegratorArg {
+    /// Ray casting: the flat diffuse colour of the visible surface.
+    Raycast,
+    /// Whitted ray tracing: shadows, reflection, refraction.
+    Whitted,
+}
+
+/// Ray–triangle tests selectable on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TriangleTestArg {
+    /// Woop, Benthin & Wald 2013 (default).
+    Watertight,
+    /// The lecture notes' plane-and-barycentrics method.
+    Projection,
+}
+
+/// `lucent render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// Scene file (TOML); the built-in default scene when omitted.
+    pub scene: Option<PathBuf>,
+    /// Output image: .png (sRGB, 8 bit), .pfm or .exr (linear float).
+    #[arg(short, long, default_value = "render.png")]
+    pub output: PathBuf,
+    /// Image width in pixels (overrides the scene file).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub width: Option<u32>,
+    /// Image height in pixels (overrides the scene file).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub height: Option<u32>,
+    /// Samples per pixel (overrides the scene file).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_048_576))]
+    pub spp: Option<u32>,
+    /// Integrator (overrides the scene file).
+    #[arg(long, value_enum)]
+    pub integrator: Option<IntegratorArg>,
+    /// Deepest reflection/refraction bounce (overrides the scene file).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=1000))]
+    pub max_depth: Option<u32>,
+    /// Render threads; 0 uses every core.
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Seed of the random sample positions (overrides the scene file).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Acceleration structure (overrides the scene file).
+    #[arg(long)]
+    pub accel: Option<AccelKind>,
+    /// Ray–triangle test (overrides the scene file).
+    #[arg(long, value_enum)]
+    pub triangle_test: Option<TriangleTestArg>,
+}
+
+/// `lucent info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// Scene file (TOML); the built-in default scene when omitted.
+    pub scene: Option<PathBuf>,
+}

@@ -1,0 +1,28 @@
+//! `lucent`: render scenes and inspect them from the command line.
+
+mod cli;
+mod info;
+mod output;
+mod render;
+
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    // A bug must still end in one clear line, not a backtrace.
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("lucent: internal error: {info} (please report this)");
+    }));
+    let args = cli::Cli::parse();
+    let result = match args.command {
+        cli::Command::Render(a) => render::run(&a),
+        cli::Command::Info(a) => info::run(&a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,49 @@
+//! `SceneDesc`: a scene as plain data, exactly as a scene file gives it.
+//!
+//! Values carry their location in the file (`Spanned`) wherever a later check may need to
+//! point at them; everything that can be checked while reading (types, finite numbers, unknown
+//! keys) is checked by serde as the file is read. Name resolution and the checks that need the
+//! whole scene happen in [`crate::build`].
+
+pub mod camera;
+pub mod light;
+pub mod material;
+pub mod object;
+pub mod settings;
+pub mod values;
+
+pub use camera::CameraDesc;
+pub use light::{LightDesc, LightKind};
+pub use material::{DiffuseDesc, MaterialDesc};
+pub use object::{ObjectDesc, ObjectKind};
+pub use settings::{ImageDesc, IntegratorName, RenderDesc, WorldDesc};
+pub use values::{Color, Finite, Scale, Vector};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// `[image]`: resolution and samples.
+    #[serde(default)]
+    pub image: ImageDesc,
+    /// `[camera]`: the pinhole camera.
+    pub camera: Spanned<CameraDesc>,
+    /// `[world]`: background and ambient light.
+    #[serde(default)]
+    pub world: WorldDesc,
+    /// `[render]`: integrator and its limits.
+    #[serde(default)]
+    pub render: RenderDesc,
+    /// `[[material]]` tables.
+    #[serde(default, rename = "material")]
+    pub materials: Vec<Spanned<MaterialDesc>>,
+    /// `[[light]]` tables.
+    #[serde(default, rename = "light")]
+    pub lights: Vec<Spanned<LightDesc>>,
+    /// `[[object]]` tables.
+    #[serde(default, rename = "object")]
+    pub objects: Vec<Spanned<ObjectDesc>>,
+}

@@ -1,0 +1,99 @@
+//! The `[image]`, `[world]` and `[render]` tables.
+
+use super::{Color, Finite};
+use serde::Deserialize;
+use toml::Spanned;
+
+/// `[image]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ImageDesc {
+    /// Width in pixels (default 800).
+    pub width: Spanned<u32>,
+    /// Height in pixels (default 600).
+    pub height: Spanned<u32>,
+    /// Samples per pixel (default 1: through the pixel's centre; more: stratified jitter).
+    pub samples: Spanned<u32>,
+}
+
+impl Default for ImageDesc {
+    fn default() -> Self {
+        Self {
+            width: Spanned::new(0..0, 800),
+            height: Spanned::new(0..0, 600),
+            samples: Spanned::new(0..0, 1),
+        }
+    }
+}
+
+/// `[world]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldDesc {
+    /// Colour of rays that hit nothing (default black).
+    pub background: Color,
+    /// The ambient light `Ia` (default 0).
+    pub ambient: Color,
+}
+
+impl Default for WorldDesc {
+    fn default() -> Self {
+        Self {
+            background: Color(lucent::Rgb::BLACK),
+            ambient: Color(lucent::Rgb::BLACK),
+        }
+    }
+}
+
+/// The integrators a scene file can name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum IntegratorName {
+    /// Ray casting: flat diffuse colours.
+    Raycast,
+    /// Whitted ray tracing.
+    #[default]
+    Whitted,
+}
+
+/// The ray–triangle tests a scene file can name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TriangleTestName {
+    /// Woop, Benthin & Wald 2013.
+    #[default]
+    Watertight,
+    /// The lecture notes' projection method.
+    Projection,
+}
+
+/// `[render]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RenderDesc {
+    /// `"raycast"` or `"whitted"` (default).
+    pub integrator: IntegratorName,
+    /// Deepest reflection/refraction bounce (default 10).
+    pub max_depth: Spanned<u32>,
+    /// Rays of smaller weight are not traced (default 1/256).
+    pub min_weight: Spanned<Finite>,
+    /// Seed of the random sample positions (default 0).
+    pub seed: u64,
+    /// Accelerator name (default `"brute"`).
+    pub accelerator: Spanned<String>,
+    /// `"watertight"` (default) or `"projection"`.
+    pub triangle_test: TriangleTestName,
+}
+
+impl Default for RenderDesc {
+    fn default() -> Self {
+        Self {
+            integrator: IntegratorName::default(),
+            max_depth: Spanned::new(0..0, 10),
+            min_weight: Spanned::new(0..0, Finite(1.0 / 256.0)),
+            seed: 0,
+            accelerator: Spanned::new(0..0, lucent::accel::AccelKind::default().name().to_string()),
+            triangle_test: TriangleTestName::default(),
+        }
+    }
+}

@@ -1,0 +1,157 @@
+//! The value types of scene files: numbers that must be finite, vectors and colours.
+//!
+//! Each checks itself while it is read, so a bad value is reported at its own line and column.
+
+use glam::Vec3;
+use lucent::Rgb;
+use serde::Deserialize;
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use std::fmt;
+
+/// A finite number (integers are accepted); NaN and infinities are refused.
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub struct Finite(pub f32);
+
+/// Three finite numbers `[x, y, z]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vector(pub Vec3);
+
+/// A linear RGB colour: one non-negative number for grey, or `[r, g, b]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Color(pub Rgb);
+
+/// A scale: one number for all axes, or `[x, y, z]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scale(pub Vec3);
+
+fn finite<E: de::Error>(v: f64) -> Result<f32, E> {
+    let f = v as f32;
+    if f.is_finite() {
+        Ok(f)
+    } else if v.is_nan() {
+        Err(E::custom("expected a finite number, found NaN"))
+    } else {
+        Err(E::custom(format!("expected a finite number, found {v}")))
+    }
+}
+
+/// Reads a number or an array of exactly `N` numbers.
+struct Numbers<const N: usize> {
+    what: &'static str,
+    scalar_ok: bool,
+}
+
+enum Read<const N: usize> {
+    Scalar(f32),
+    Array([f32; N]),
+}
+
+impl<'de, const N: usize> Visitor<'de> for Numbers<N> {
+    type Value = Read<N>;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.what)
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
+        if !self.scalar_ok {
+            return Err(E::invalid_type(de::Unexpected::Float(v), &self));
+        }
+        finite(v).map(Read::Scalar)
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+        self.visit_f64(v as f64)
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+        self.visit_f64(v as f64)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut out = [0.0; N];
+        for (i, slot) in out.iter_mut().enumerate() {
+            let Some(Finite(v)) = seq.next_element()? else {
+                return Err(de::Error::invalid_length(i, &self));
+            };
+            *slot = v;
+        }
+        if seq.next_element::<de::IgnoredAny>()?.is_some() {
+            return Err(de::Error::invalid_length(N + 1, &self));
+        }
+        Ok(Read::Array(out))
+    }
+}
+
+struct FiniteVisitor;
+
+impl Visitor<'_> for FiniteVisitor {
+    type Value = Finite;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a finite number")
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Finite, E> {
+        finite(v).map(Finite)
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Finite, E> {
+        self.visit_f64(v as f64)
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Finite, E> {
+        self.visit_f64(v as f64)
+    }
+}
+
+impl<'de> Deserialize<'de> for Finite {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(FiniteVisitor)
+    }
+}
+
+impl<'de> Deserialize<'de> for Vector {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        match d.deserialize_any(Numbers::<3> {
+            what: "a vector [x, y, z] of finite numbers",
+            scalar_ok: false,
+        })? {
+            Read::Array(v) => Ok(Vector(Vec3::from_array(v))),
+            Read::Scalar(v) => Ok(Vector(Vec3::splat(v))), // not reached: the visitor refuses scalars
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Scale {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let v = match d.deserialize_any(Numbers::<3> {
+            what: "a scale: a number or [x, y, z]",
+            scalar_ok: true,
+        })? {
+            Read::Scalar(s) => Vec3::splat(s),
+            Read::Array(v) => Vec3::from_array(v),
+        };
+        if v.cmpeq(Vec3::ZERO).any() {
+            return Err(de::Error::custom("a scale of zero flattens the object"));
+        }
+        Ok(Scale(v))
+    }
+}
+
+impl<'de> Deserialize<'de> for Color {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let what = "a colour: a number or [r, g, b]";
+        let rgb = match d.deserialize_any(Numbers::<3> {
+            what,
+            scalar_ok: true,
+        })? {
+            Read::Scalar(v) => Rgb::gray(v),
+            Read::Array(v) => Rgb::from(v),
+        };
+        if rgb.r < 0.0 || rgb.g < 0.0 || rgb.b < 0.0 {
+            return Err(de::Error::custom("colours must not be negative"));
+        }
+        Ok(Color(rgb))
+    }
+}

@@ -1,0 +1,242 @@
+//! Every class of bad scene file gets an error naming the file, line and column, and the cause.
+
+use lucent_scene::{LoadError, SceneFile};
+use std::path::PathBuf;
+
+const CAMERA: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n";
+const MATERIAL: &str = "[[material]]\nname = \"m\"\nkd = 0.5\n";
+
+fn load(text: &str) -> Result<(), LoadError> {
+    let file = SceneFile::parse(PathBuf::from("bad.toml"), PathBuf::new(), text.to_string())?;
+    file.build().map(|_| ())
+}
+
+/// The error for `text`, checked to be at `line:column` and to mention `cause`.
+fn assert_error(text: &str, line: usize, column: usize, cause: &str) {
+    let e = load(text).expect_err("the scene should be refused");
+    let shown = e.to_string();
+    assert!(
+        shown.starts_with(&format!("bad.toml:{line}:{column}: ")),
+        "wrong place: {shown}"
+    );
+    assert!(
+        shown.contains(cause),
+        "`{shown}` does not mention `{cause}`"
+    );
+    assert_eq!(shown.lines().count(), 1, "one line: {shown}");
+}
+
+#[test]
+fn a_good_scene_loads() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n"
+    );
+    load(&text).unwrap();
+}
+
+#[test]
+fn unknown_key() {
+    let text = format!("{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncentre = [0, 0, 0]\n");
+    assert_error(&text, 9, 1, "unknown field `centre`");
+}
+
+#[test]
+fn unknown_table() {
+    assert_error(
+        &format!("{CAMERA}[lights]\n"),
+        4,
+        2,
+        "unknown field `lights`",
+    );
+}
+
+#[test]
+fn key_of_another_kind_of_object() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\nradius = 2\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 11, 10, "`radius` does not apply to a plane");
+}
+
+#[test]
+fn wrong_type() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = \"origin\"\nradius = 1\nmaterial = \"m\"\n"
+    );
+    assert_error(
+        &text,
+        9,
+        10,
+        "invalid type: string \"origin\", expected a vector",
+    );
+}
+
+#[test]
+fn vector_of_the_wrong_length() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0]\nradius = 1\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 9, 10, "invalid length 2");
+}
+
+#[test]
+fn unknown_object_type() {
+    let text = format!("{CAMERA}{MATERIAL}[[object]]\ntype = \"cube\"\nmaterial = \"m\"\n");
+    assert_error(&text, 8, 8, "unknown variant `cube`");
+}
+
+#[test]
+fn unknown_material_name() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"gold\"\n"
+    );
+    assert_error(&text, 11, 12, "unknown material `gold` (known: m)");
+}
+
+#[test]
+fn duplicate_material_name() {
+    assert_error(
+        &format!("{CAMERA}{MATERIAL}{MATERIAL}"),
+        8,
+        8,
+        "a material named `m` already exists",
+    );
+}
+
+#[test]
+fn negative_radius() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 10, 10, "radius must be positive, got -1");
+}
+
+#[test]
+fn zero_normal() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 0]\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 10, 10, "normal must not be zero");
+}
+
+#[test]
+fn nan_and_infinity() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, nan, 0]\nradius = 1\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 9, 14, "expected a finite number, found NaN");
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = inf\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 10, 10, "expected a finite number, found inf");
+}
+
+#[test]
+fn negative_colour() {
+    assert_error(
+        &format!("{CAMERA}[world]\nambient = [0, -1, 0]\n"),
+        5,
+        11,
+        "colours must not be negative",
+    );
+}
+
+#[test]
+fn missing_required_key() {
+    let text = format!("{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\nmaterial = \"m\"\n");
+    assert_error(&text, 7, 1, "a sphere needs `center`");
+}
+
+#[test]
+fn degenerate_camera() {
+    assert_error(
+        "[camera]\neye = [0, 0, 0]\nlook_at = [0, 0, 0]\n",
+        1,
+        1,
+        "eye and look_at are the same point",
+    );
+}
+
+#[test]
+fn zero_width() {
+    assert_error(
+        &format!("{CAMERA}[image]\nwidth = 0\n"),
+        5,
+        9,
+        "width must be between 1 and",
+    );
+}
+
+#[test]
+fn negative_integer() {
+    assert_error(
+        &format!("{CAMERA}[image]\nwidth = -3\n"),
+        5,
+        9,
+        "invalid value: integer `-3`",
+    );
+}
+
+#[test]
+fn collinear_triangle() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"triangle\"\nvertices = [[0, 0, 0], [1, 1, 1], [2, 2, 2]]\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 9, 12, "collinear");
+}
+
+#[test]
+fn unknown_integrator_and_accelerator() {
+    assert_error(
+        &format!("{CAMERA}[render]\nintegrator = \"path\"\n"),
+        5,
+        14,
+        "unknown variant `path`",
+    );
+    assert_error(
+        &format!("{CAMERA}[render]\naccelerator = \"kd\"\n"),
+        5,
+        15,
+        "unknown accelerator 'kd'",
+    );
+}
+
+#[test]
+fn bad_checker() {
+    let text = format!(
+        "{CAMERA}[[material]]\nname = \"c\"\nkd = {{ checker = {{ even = 1, odd = 0, size = 0 }} }}\n"
+    );
+    assert_error(&text, 6, 6, "checker size must be positive");
+    let text = format!("{CAMERA}[[material]]\nname = \"c\"\nkd = {{ marble = 1 }}\n");
+    assert_error(&text, 6, 6, "unknown field `marble`");
+}
+
+#[test]
+fn invalid_toml_syntax() {
+    assert_error(&format!("{CAMERA}[world\n"), 4, 7, "");
+}
+
+#[test]
+fn missing_mesh_file() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"mesh\"\nfile = \"nowhere.obj\"\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 9, 8, "mesh file `nowhere.obj` not found");
+}
+
+#[test]
+fn bad_mesh_file_names_the_mesh_files_line() {
+    let dir = std::env::temp_dir().join(format!("lucent-scene-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("bad.obj"), "v 0 0 0\nv 1 0 0\nf 1 2 3\n").unwrap();
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"mesh\"\nfile = \"bad.obj\"\nmaterial = \"m\"\n"
+    );
+    let file = SceneFile::parse(dir.join("s.toml"), dir.clone(), text).unwrap();
+    let e = file.build().unwrap_err().to_string();
+    assert!(
+        e.ends_with("bad.obj:3:1: vertex index 3 is out of range (2 vertices)"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}

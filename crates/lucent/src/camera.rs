@@ -1,0 +1,168 @@
+//! The pinhole camera: a ray from the eye through every point of the image.
+
+use glam::Vec3;
+use lucent_accel::Ray;
+use thiserror::Error;
+
+/// Why a camera cannot be built.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum CameraError {
+    /// `look_at` equals `eye`: no view direction.
+    #[error("the camera's eye and look_at are the same point")]
+    NoViewDirection,
+    /// `up` is zero or parallel to the view direction: the image's roll is undefined.
+    #[error("the camera's up vector is zero or parallel to the view direction")]
+    UpParallelToView,
+    /// The field of view is not strictly between 0 and 180 degrees.
+    #[error("the field of view must be between 0 and 180 degrees (exclusive), got {0}")]
+    FieldOfView(f32),
+    /// A zero width or height.
+    #[error("the image must be at least 1×1 pixels, got {0}×{1}")]
+    Resolution(u32, u32),
+    /// A non-finite input.
+    #[error("the camera's eye, look_at and up must be finite")]
+    NotFinite,
+}
+
+/// A pinhole camera with its image resolution.
+///
+/// Image coordinates `(x, y)` run over `[0, width) × [0, height)` in pixels: `x` to the right,
+/// `y` downwards, so row 0 is the top of the image; pixel `(i, j)` covers `[i, i+1) × [j, j+1)`
+/// and its centre is `(i + 0.5, j + 0.5)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    eye: Vec3,
+    forward: Vec3,
+    /// Unit right vector scaled to half the image width at unit distance.
+    right: Vec3,
+    /// Unit up vector scaled to half the image height at unit distance.
+    up: Vec3,
+    width: u32,
+    height: u32,
+}
+
+impl Camera {
+    /// A camera at `eye` looking at `look_at`, with `up` giving the image's upright direction
+    /// and `fov_degrees` its vertical field of view; the aspect ratio is `width / height`.
+    pub fn new(
+        eye: Vec3,
+        look_at: Vec3,
+        up: Vec3,
+        fov_degrees: f32,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        if !(eye.is_finite() && look_at.is_finite() && up.is_finite()) {
+            return Err(CameraError::NotFinite);
+        }
+        if !(fov_degrees > 0.0 && fov_degrees < 180.0) {
+            return Err(CameraError::FieldOfView(fov_degrees));
+        }
+        if width == 0 || height == 0 {
+            return Err(CameraError::Resolution(width, height));
+        }
+        let forward = (look_at - eye)
+            .try_normalize()
+            .ok_or(CameraError::NoViewDirection)?;
+        let right = forward
+            .cross(up)
+            .try_normalize()
+            .ok_or(CameraError::UpParallelToView)?;
+        let true_up = right.cross(forward);
+        let half_height = (fov_degrees.to_radians() / 2.0).tan();
+        let half_width = half_height * width as f32 / height as f32;
+        Ok(Self {
+            eye,
+            forward,
+            right: right * half_width,
+            up: true_up * half_height,
+            width,
+            height,
+        })
+    }
+
+    /// Image width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Image height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The eye point.
+    pub fn eye(&self) -> Vec3 {
+        self.eye
+    }
+
+    /// The ray from the eye through image point `(x, y)` (see the type's docs), unit direction.
+    pub fn ray(&self, x: f32, y: f32) -> Ray {
+        let ndc_x = 2.0 * x / self.width as f32 - 1.0;
+        let ndc_y = 1.0 - 2.0 * y / self.height as f32;
+        let dir = (self.forward + ndc_x * self.right + ndc_y * self.up).normalize();
+        Ray::new(self.eye, dir)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera(width: u32, height: u32) -> Camera {
+        Camera::new(
+            Vec3::new(0.0, 0.0, 5.0),
+            Vec3::ZERO,
+            Vec3::Y,
+            90.0,
+            width,
+            height,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_image_centre_looks_at_the_target() {
+        let ray = camera(4, 2).ray(2.0, 1.0);
+        assert_eq!(ray.origin, Vec3::new(0.0, 0.0, 5.0));
+        assert!((ray.dir - -Vec3::Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn row_zero_is_the_top_and_the_edges_span_the_fov() {
+        let c = camera(2, 2);
+        // Top edge at the vertical centre line: 45° up for a 90° field of view.
+        let top = c.ray(1.0, 0.0).dir;
+        assert!((top - Vec3::new(0.0, 1.0, -1.0).normalize()).length() < 1e-6);
+        let right = c.ray(2.0, 1.0).dir;
+        assert!((right - Vec3::new(1.0, 0.0, -1.0).normalize()).length() < 1e-6);
+    }
+
+    #[test]
+    fn wide_images_widen_the_horizontal_extent() {
+        let c = camera(4, 2);
+        let right = c.ray(4.0, 1.0).dir;
+        assert!((right - Vec3::new(2.0, 0.0, -1.0).normalize()).length() < 1e-6);
+    }
+
+    #[test]
+    fn degenerate_cameras_are_refused() {
+        let e = Vec3::ZERO;
+        assert_eq!(
+            Camera::new(e, e, Vec3::Y, 60.0, 1, 1),
+            Err(CameraError::NoViewDirection)
+        );
+        assert_eq!(
+            Camera::new(e, Vec3::Y, Vec3::Y, 60.0, 1, 1),
+            Err(CameraError::UpParallelToView)
+        );
+        assert_eq!(
+            Camera::new(e, Vec3::Z, Vec3::Y, 180.0, 1, 1),
+            Err(CameraError::FieldOfView(180.0))
+        );
+        assert_eq!(
+            Camera::new(e, Vec3::Z, Vec3::Y, 60.0, 0, 1),
+            Err(CameraError::Resolution(0, 1))
+        );
+    }
+}

@@ -1,0 +1,84 @@
+//! Integrators: the colour seen along a ray.
+//!
+//! Contract: `radiance(scene, ray, stats)` returns the linear RGB radiance arriving at the
+//! ray's origin from direction `−ray.dir` (`ray.dir` of unit length), and counts the rays it
+//! traces into `stats`. It knows nothing of pixels or threads. To add one: a file with its
+//! settings struct and `radiance`, a variant here, and its name in [`Integrator::name`].
+
+pub mod raycast;
+pub mod whitted;
+
+pub use whitted::Whitted;
+
+use crate::Rgb;
+use crate::scene::Scene;
+use lucent_accel::{Ray, TraversalStats};
+
+/// Rays traced, by kind, and the accelerator work they cost.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayStats {
+    /// Primary rays from the camera.
+    pub camera: u64,
+    /// Shadow rays towards lights.
+    pub shadow: u64,
+    /// Mirror-reflected rays (total internal reflection included).
+    pub reflected: u64,
+    /// Refracted (transmitted) rays.
+    pub refracted: u64,
+    /// Samples whose radiance was NaN or infinite, dropped from the film.
+    pub nonfinite: u64,
+    /// Accelerator work over all rays.
+    pub traversal: TraversalStats,
+}
+
+impl RayStats {
+    /// All rays traced.
+    pub fn total(&self) -> u64 {
+        self.camera + self.shadow + self.reflected + self.refracted
+    }
+}
+
+impl std::ops::AddAssign for RayStats {
+    fn add_assign(&mut self, o: Self) {
+        self.camera += o.camera;
+        self.shadow += o.shadow;
+        self.reflected += o.reflected;
+        self.refracted += o.refracted;
+        self.nonfinite += o.nonfinite;
+        self.traversal += o.traversal;
+    }
+}
+
+/// The light-transport method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Integrator {
+    /// Appel's ray casting: the flat diffuse colour of the nearest surface.
+    Raycast,
+    /// Whitted's recursive ray tracing: local shading, shadows, reflection and refraction.
+    Whitted(Whitted),
+}
+
+impl Default for Integrator {
+    fn default() -> Self {
+        Integrator::Whitted(Whitted::default())
+    }
+}
+
+impl Integrator {
+    /// The name used in scene files and on the command line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Integrator::Raycast => "raycast",
+            Integrator::Whitted(_) => "whitted",
+        }
+    }
+
+    /// Radiance along `ray`; see the module's contract.
+    #[inline]
+    pub fn radiance(&self, scene: &Scene, ray: &Ray, stats: &mut RayStats) -> Rgb {
+        match self {
+            Integrator::Raycast => raycast::radiance(scene, ray, stats),
+            Integrator::Whitted(w) => w.radiance(scene, ray, stats),
+        }
+    }
+}

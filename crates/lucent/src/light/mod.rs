@@ -1,0 +1,45 @@
+//! Light sources: points and directions.
+//!
+//! A light answers, for a point being shaded, where it is (direction and distance) and how
+//! much it delivers there ([`LightSample`]). To add a kind: a file with its struct and
+//! `illuminate`, a variant here, and its scene-file keys.
+
+pub mod directional;
+pub mod point;
+
+pub use directional::DirectionalLight;
+pub use point::{Falloff, PointLight};
+
+use crate::Rgb;
+use glam::Vec3;
+
+/// A light source.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// Light from one point.
+    Point(PointLight),
+    /// Parallel light from infinitely far away.
+    Directional(DirectionalLight),
+}
+
+/// A light as seen from a shaded point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// Unit vector from the shaded point towards the light (`L`).
+    pub to_light: Vec3,
+    /// Distance to the light along `to_light`; infinite for a directional light.
+    pub distance: f32,
+    /// Intensity arriving at the point, attenuation included (`I_j · att_j`).
+    pub intensity: Rgb,
+}
+
+impl Light {
+    /// The light as seen from `p`, or `None` when `p` is exactly at a point light.
+    #[inline]
+    pub fn illuminate(&self, p: Vec3) -> Option<LightSample> {
+        match self {
+            Light::Point(l) => l.illuminate(p),
+            Light::Directional(l) => Some(l.illuminate()),
+        }
+    }
+}
