@@ -84,7 +84,7 @@ impl FromStr for AccelKind {
             .ok_or_else(|| {
                 let names: Vec<_> = AccelKind::ALL.iter().map(|k| k.name()).collect();
                 format!(
-                    "unknown accelerator '{s}' (expected one of: {})",
+                    "unknown accelerator `{s}` (expected one of: {})",
                     names.join(", ")
                 )
             })

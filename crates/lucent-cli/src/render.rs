@@ -6,6 +6,7 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lucent::render::{RenderStats, render};
 use lucent_scene::SceneFile;
+use lucent_scene::Spanned;
 use lucent_scene::desc::IntegratorName;
 use lucent_scene::desc::settings::TriangleTestName;
 use std::path::Path;
@@ -24,17 +25,19 @@ pub fn read_scene(path: Option<&Path>) -> anyhow::Result<SceneFile> {
     })
 }
 
-/// Applies the command line's overrides to the scene description.
+/// Applies the command line's overrides to the scene description. An overridden value loses
+/// its place in the file, so an error about it does not point at the file's value.
 fn apply_overrides(file: &mut SceneFile, args: &RenderArgs) {
+    let from_flag = |v| Spanned::new(0..0, v);
     let d = &mut file.desc;
     if let Some(w) = args.width {
-        *d.image.width.get_mut() = w;
+        d.image.width = from_flag(w);
     }
     if let Some(h) = args.height {
-        *d.image.height.get_mut() = h;
+        d.image.height = from_flag(h);
     }
     if let Some(n) = args.spp {
-        *d.image.samples.get_mut() = n;
+        d.image.samples = from_flag(n);
     }
     if let Some(i) = args.integrator {
         d.render.integrator = match i {
@@ -43,13 +46,13 @@ fn apply_overrides(file: &mut SceneFile, args: &RenderArgs) {
         };
     }
     if let Some(m) = args.max_depth {
-        *d.render.max_depth.get_mut() = m;
+        d.render.max_depth = from_flag(m);
     }
     if let Some(s) = args.seed {
         d.render.seed = s;
     }
     if let Some(a) = args.accel {
-        *d.render.accelerator.get_mut() = a.name().to_string();
+        d.render.accelerator = Spanned::new(0..0, a.name().to_string());
     }
     if let Some(t) = args.triangle_test {
         d.render.triangle_test = match t {

@@ -15,6 +15,7 @@ pub mod obj;
 pub use build::{Loaded, build};
 pub use desc::SceneDesc;
 pub use error::{LoadError, Source};
+pub use toml::Spanned;
 
 use std::path::{Path, PathBuf};
 

@@ -72,6 +72,22 @@ fn wrong_type() {
 }
 
 #[test]
+fn integer_where_a_vector_belongs() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = 0\nradius = 1\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 9, 10, "invalid type: integer `0`, expected a vector");
+}
+
+#[test]
+fn vector_too_long() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0, 1, 2]\nradius = 1\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 9, 10, "invalid length 5");
+}
+
+#[test]
 fn vector_of_the_wrong_length() {
     let text = format!(
         "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0]\nradius = 1\nmaterial = \"m\"\n"
@@ -197,7 +213,7 @@ fn unknown_integrator_and_accelerator() {
         &format!("{CAMERA}[render]\naccelerator = \"kd\"\n"),
         5,
         15,
-        "unknown accelerator 'kd'",
+        "unknown accelerator `kd`",
     );
 }
 

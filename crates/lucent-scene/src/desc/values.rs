@@ -61,10 +61,16 @@ impl<'de, const N: usize> Visitor<'de> for Numbers<N> {
     }
 
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+        if !self.scalar_ok {
+            return Err(E::invalid_type(de::Unexpected::Signed(v), &self));
+        }
         self.visit_f64(v as f64)
     }
 
     fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+        if !self.scalar_ok {
+            return Err(E::invalid_type(de::Unexpected::Unsigned(v), &self));
+        }
         self.visit_f64(v as f64)
     }
 
@@ -76,8 +82,12 @@ impl<'de, const N: usize> Visitor<'de> for Numbers<N> {
             };
             *slot = v;
         }
-        if seq.next_element::<de::IgnoredAny>()?.is_some() {
-            return Err(de::Error::invalid_length(N + 1, &self));
+        let mut extra = 0;
+        while seq.next_element::<de::IgnoredAny>()?.is_some() {
+            extra += 1;
+        }
+        if extra > 0 {
+            return Err(de::Error::invalid_length(N + extra, &self));
         }
         Ok(Read::Array(out))
     }
