@@ -141,7 +141,7 @@ fn ctrl_c_writes_the_partial_image() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("partial.pfm");
     // Large enough to take many seconds.
-    let mut child = lucent()
+    let child = lucent()
         .args([
             "render",
             "--width",
