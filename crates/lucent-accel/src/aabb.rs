@@ -3,6 +3,16 @@
 use crate::Ray;
 use glam::Vec3;
 
+/// `1 + 2·γ(3)` with `γ(n) = n·ε / (1 − n·ε)`: Ize's bound on the slab test's rounding,
+/// applied to the exit distance so that a box the ray touches is never lost.
+pub const ROUNDING_SLACK: f32 = 1.000_000_4;
+
+/// Relative slack (about 128 ulps) on every comparison of a box's entry with `t_max`, the
+/// nearest hit so far. That hit's distance comes from a primitive's own test, with its own
+/// rounding; without the slack, a box whose computed entry lands a few ulps beyond it could be
+/// skipped although it holds a hit as near (a tie) or, by rounding, nearer.
+pub const CULL_SLACK: f32 = 1.0 + 1.0 / 65536.0;
+
 /// An axis-aligned box `[min, max]`; empty when any `min` component exceeds `max`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
@@ -51,6 +61,16 @@ impl Aabb {
         }
     }
 
+    /// True when a bound is NaN: the box of a primitive that no ray can hit.
+    pub fn has_nan(&self) -> bool {
+        self.min.is_nan() || self.max.is_nan()
+    }
+
+    /// The box itself, or [`Aabb::EMPTY`] when it has a NaN bound, so that unions stay clean.
+    pub fn or_empty_if_nan(self) -> Self {
+        if self.has_nan() { Self::EMPTY } else { self }
+    }
+
     /// True when the box holds no point.
     pub fn is_empty(&self) -> bool {
         self.min.cmpgt(self.max).any()
@@ -75,21 +95,42 @@ impl Aabb {
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 
-    /// Entry distance of `ray` into the box if it enters before `t_max`, by the slab method.
-    ///
-    /// Robust in the sense of Ize (2013): the far distance is widened by a few ulps so that
-    /// rounding never loses a box the ray grazes. A ray parallel to a slab whose origin lies
-    /// exactly in one of the slab's planes gives 0 · ∞ = NaN there; such a slab is taken as no
-    /// constraint, since the origin is inside it (boundaries included).
+    /// Entry distance of `ray` into the box if it enters before `t_max`, by the slab method;
+    /// boundaries count as inside. See [`Aabb::hit_interval`].
+    #[inline]
     pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        self.hit_interval(ray, t_max).map(|(enter, _)| enter)
+    }
+
+    /// Entry and exit distances of `ray` through the box, if it enters before `t_max`; the
+    /// entry is at least 0 and the exit at most `t_max` (widened as below).
+    ///
+    /// Robust in the sense of Ize (2013): the exit distance is widened by [`ROUNDING_SLACK`] so
+    /// that rounding never loses a box the ray touches, and `t_max` by [`CULL_SLACK`]. A ray parallel to a slab whose origin
+    /// lies exactly in one of the slab's planes gets `0 · ∞ = NaN` there; that slab is then no
+    /// constraint, since the origin is inside it.
+    #[inline]
+    pub fn hit_interval(&self, ray: &Ray, t_max: f32) -> Option<(f32, f32)> {
         let t0 = (self.min - ray.origin) * ray.inv_dir;
         let t1 = (self.max - ray.origin) * ray.inv_dir;
         let in_plane = t0.is_nan_mask() | t1.is_nan_mask();
         let near = Vec3::select(in_plane, Vec3::NEG_INFINITY, t0.min(t1));
         let far = Vec3::select(in_plane, Vec3::INFINITY, t0.max(t1));
         let t_enter = near.x.max(near.y).max(near.z).max(0.0);
-        // 1 + 2·gamma(3), gamma(n) = n·eps/(1 − n·eps): Ize's bound on the slab test's rounding.
-        let t_exit = far.x.min(far.y).min(far.z).min(t_max) * 1.000_000_4;
+        let t_exit = (far.x.min(far.y).min(far.z) * ROUNDING_SLACK).min(t_max * CULL_SLACK);
+        (t_enter <= t_exit).then_some((t_enter, t_exit))
+    }
+
+    /// [`Aabb::hit`] for a ray with no zero direction component (no NaN can arise): the fast
+    /// path of the hierarchies' traversal loops.
+    #[inline]
+    pub fn hit_nonparallel(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let t0 = (self.min - ray.origin) * ray.inv_dir;
+        let t1 = (self.max - ray.origin) * ray.inv_dir;
+        let near = t0.min(t1);
+        let far = t0.max(t1);
+        let t_enter = near.x.max(near.y).max(near.z).max(0.0);
+        let t_exit = (far.x.min(far.y).min(far.z) * ROUNDING_SLACK).min(t_max * CULL_SLACK);
         (t_enter <= t_exit).then_some(t_enter)
     }
 }
@@ -128,7 +169,7 @@ mod tests {
 
     #[test]
     fn ray_in_a_face_plane_is_not_lost() {
-        // Origin in the plane x = 1 with dir.x = 0: (1 - 1) · inf = NaN for that slab.
+        // Origin in the plane x = ±1 with dir.x = 0: (±1 ∓ 1) · ∞ = NaN for that slab.
         for x in [1.0, -1.0] {
             let ray = Ray::new(Vec3::new(x, 0.0, -5.0), Vec3::Z);
             assert_eq!(unit().hit(&ray, f32::INFINITY), Some(4.0));

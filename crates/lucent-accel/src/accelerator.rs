@@ -1,6 +1,6 @@
 //! The contract every acceleration structure fulfils, and the enum that picks one at run time.
 
-use crate::{Aabb, BruteForce, Ray};
+use crate::{Aabb, BoundingVolumes, BruteForce, Bvh, Octree, Ray};
 use std::fmt;
 use std::str::FromStr;
 
@@ -24,7 +24,9 @@ impl std::ops::AddAssign for TraversalStats {
 ///
 /// Every implementation must report the same hits as [`BruteForce`]: for closest hit, the leaf
 /// test is called, with a shrinking `t_max`, on at least every primitive whose box the ray
-/// enters before `t_max`; for any hit, on every such primitive until the leaf test says stop.
+/// enters before `t_max` (boundaries included); for any hit, on every such primitive until the
+/// leaf test says stop. No primitive is offered twice in one query. A primitive whose box has
+/// a NaN bound is taken to be one no ray can hit, and may never be offered.
 pub trait Accelerator {
     /// Closest hit along `ray` in `(0, t_max)`.
     ///
@@ -45,18 +47,32 @@ pub trait Accelerator {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AccelKind {
     /// Every primitive tested for every ray: the lecture notes' loop, and the oracle.
-    #[default]
     BruteForce,
+    /// Every primitive's box tested first, the primitive only when its box is hit.
+    BoundingVolumes,
+    /// Glassner's octree: cells of eight, front to back, with mailboxes.
+    Octree,
+    /// A binary SAH bounding volume hierarchy.
+    #[default]
+    Bvh,
 }
 
 impl AccelKind {
     /// Every kind, in the order a table lists them.
-    pub const ALL: [AccelKind; 1] = [AccelKind::BruteForce];
+    pub const ALL: [AccelKind; 4] = [
+        AccelKind::BruteForce,
+        AccelKind::BoundingVolumes,
+        AccelKind::Octree,
+        AccelKind::Bvh,
+    ];
 
     /// The name used on the command line and in scene files.
     pub fn name(self) -> &'static str {
         match self {
             AccelKind::BruteForce => "brute",
+            AccelKind::BoundingVolumes => "bounds",
+            AccelKind::Octree => "octree",
+            AccelKind::Bvh => "bvh",
         }
     }
 
@@ -64,6 +80,11 @@ impl AccelKind {
     pub fn build(self, boxes: &[Aabb]) -> AnyAccelerator {
         match self {
             AccelKind::BruteForce => AnyAccelerator::BruteForce(BruteForce::new(boxes)),
+            AccelKind::BoundingVolumes => {
+                AnyAccelerator::BoundingVolumes(BoundingVolumes::new(boxes))
+            }
+            AccelKind::Octree => AnyAccelerator::Octree(Octree::new(boxes)),
+            AccelKind::Bvh => AnyAccelerator::Bvh(Bvh::new(boxes)),
         }
     }
 }
@@ -96,6 +117,35 @@ impl FromStr for AccelKind {
 pub enum AnyAccelerator {
     /// See [`BruteForce`].
     BruteForce(BruteForce),
+    /// See [`BoundingVolumes`].
+    BoundingVolumes(BoundingVolumes),
+    /// See [`Octree`].
+    Octree(Octree),
+    /// See [`Bvh`].
+    Bvh(Bvh),
+}
+
+/// Size and shape of a built structure, for `lucent info` and benchmarks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AccelInfo {
+    /// Nodes or cells (0 for the flat structures).
+    pub nodes: usize,
+    /// Levels from the root to the deepest leaf (0 for the flat structures).
+    pub depth: usize,
+    /// Bytes of the structure itself.
+    pub bytes: usize,
+}
+
+/// Calls `$body` with `$a` bound to the structure inside `$self`, whatever its kind.
+macro_rules! dispatch {
+    ($self:expr, $a:ident => $body:expr) => {
+        match $self {
+            AnyAccelerator::BruteForce($a) => $body,
+            AnyAccelerator::BoundingVolumes($a) => $body,
+            AnyAccelerator::Octree($a) => $body,
+            AnyAccelerator::Bvh($a) => $body,
+        }
+    };
 }
 
 impl AnyAccelerator {
@@ -103,26 +153,48 @@ impl AnyAccelerator {
     pub fn kind(&self) -> AccelKind {
         match self {
             AnyAccelerator::BruteForce(_) => AccelKind::BruteForce,
+            AnyAccelerator::BoundingVolumes(_) => AccelKind::BoundingVolumes,
+            AnyAccelerator::Octree(_) => AccelKind::Octree,
+            AnyAccelerator::Bvh(_) => AccelKind::Bvh,
+        }
+    }
+
+    /// Node count, depth and memory.
+    pub fn info(&self) -> AccelInfo {
+        match self {
+            AnyAccelerator::BruteForce(_) => AccelInfo::default(),
+            AnyAccelerator::BoundingVolumes(a) => AccelInfo {
+                bytes: a.memory_bytes(),
+                ..AccelInfo::default()
+            },
+            AnyAccelerator::Octree(a) => AccelInfo {
+                nodes: a.cell_count(),
+                depth: a.depth(),
+                bytes: a.memory_bytes(),
+            },
+            AnyAccelerator::Bvh(a) => AccelInfo {
+                nodes: a.nodes().len(),
+                depth: a.depth(),
+                bytes: a.memory_bytes(),
+            },
         }
     }
 }
 
 impl Accelerator for AnyAccelerator {
+    #[inline]
     fn closest_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
-        match self {
-            AnyAccelerator::BruteForce(a) => a.closest_hit(ray, t_max, stats, leaf),
-        }
+        dispatch!(self, a => a.closest_hit(ray, t_max, stats, leaf))
     }
 
+    #[inline]
     fn any_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
     where
         F: FnMut(u32) -> bool,
     {
-        match self {
-            AnyAccelerator::BruteForce(a) => a.any_hit(ray, t_max, stats, leaf),
-        }
+        dispatch!(self, a => a.any_hit(ray, t_max, stats, leaf))
     }
 }

@@ -17,10 +17,17 @@
 
 pub mod aabb;
 pub mod accelerator;
+pub mod bounding_volumes;
 pub mod brute_force;
+pub mod bvh;
+mod mailbox;
+pub mod octree;
 pub mod ray;
 
 pub use aabb::Aabb;
-pub use accelerator::{AccelKind, Accelerator, AnyAccelerator, TraversalStats};
+pub use accelerator::{AccelInfo, AccelKind, Accelerator, AnyAccelerator, TraversalStats};
+pub use bounding_volumes::BoundingVolumes;
 pub use brute_force::BruteForce;
+pub use bvh::Bvh;
+pub use octree::Octree;
 pub use ray::Ray;

@@ -9,7 +9,7 @@ pub struct Ray {
     pub origin: Vec3,
     /// Its direction; not necessarily of unit length.
     pub dir: Vec3,
-    /// `1 / dir` per component (infinite where a component is zero), for slab tests.
+    /// `1 / dir` per component (±∞ where a component is zero), for slab tests.
     pub inv_dir: Vec3,
 }
 
@@ -21,6 +21,13 @@ impl Ray {
             dir,
             inv_dir: dir.recip(),
         }
+    }
+
+    /// True when a component of the direction is zero: the ray is parallel to a slab, and a
+    /// slab test may meet `0 · ∞ = NaN` (see [`crate::Aabb::hit`]).
+    #[inline]
+    pub fn has_parallel_axis(&self) -> bool {
+        self.dir.cmpeq(Vec3::ZERO).any()
     }
 
     /// The point at parameter `t`.

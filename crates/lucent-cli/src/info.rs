@@ -12,10 +12,13 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
     let c = scene.counts();
     println!("scene:       {}", file.path.display());
     println!(
-        "objects:     {} ({} spheres, {} planes, {} meshes)",
-        c.objects, c.spheres, c.planes, c.meshes
+        "objects:     {} ({} spheres, {} planes, {} mesh instances of {} meshes)",
+        c.objects, c.spheres, c.planes, c.instances, c.meshes
     );
-    println!("triangles:   {}", c.triangles);
+    println!(
+        "triangles:   {} ({} stored)",
+        c.triangles, c.unique_triangles
+    );
     println!("lights:      {}", c.lights);
     println!("materials:   {}", c.materials);
     let b = scene.bounds();
@@ -38,10 +41,16 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         s.spp,
         s.integrator.name()
     );
+    let a = scene.accel_report();
     println!(
-        "accelerator: {} ({} triangle test)",
-        scene.accelerator(),
-        scene.triangle_test().name()
+        "accelerator: {}, built in {:.1} ms: {} nodes, depth {}, {:.2} MB ({:.1} bytes per primitive)",
+        a.kind,
+        a.build_time.as_secs_f64() * 1e3,
+        a.nodes,
+        a.depth,
+        a.bytes as f64 / 1e6,
+        a.bytes as f64 / a.primitives.max(1) as f64
     );
+    println!("triangle test: {}", scene.triangle_test().name());
     Ok(ExitCode::SUCCESS)
 }

@@ -109,7 +109,7 @@ fn info_counts_the_default_scene() {
     assert_success(&output);
     let stdout = String::from_utf8(output.stdout).unwrap();
     assert!(
-        stdout.contains("objects:     3 (2 spheres, 1 planes, 0 meshes)"),
+        stdout.contains("objects:     3 (2 spheres, 1 planes, 0 mesh instances of 0 meshes)"),
         "{stdout}"
     );
     assert!(stdout.contains("lights:      2"), "{stdout}");
@@ -130,7 +130,10 @@ fn info_counts_the_bunny_triangles() {
     let output = lucent().arg("info").arg(bunny).output().unwrap();
     assert_success(&output);
     let stdout = String::from_utf8(output.stdout).unwrap();
-    assert!(stdout.contains("triangles:   69451"), "{stdout}");
+    assert!(
+        stdout.contains("triangles:   69451 (69451 stored)"),
+        "{stdout}"
+    );
 }
 
 /// Ctrl-C (SIGINT) stops the render, writes the image so far and exits 130.

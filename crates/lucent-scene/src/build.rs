@@ -7,7 +7,7 @@ use crate::desc::settings::TriangleTestName;
 use crate::desc::{IntegratorName, LightKind, ObjectDesc, ObjectKind, SceneDesc};
 use crate::error::{LoadError, Source};
 use crate::obj::read_obj;
-use glam::{Mat3, Vec3};
+use glam::{Affine3A, Mat3, Vec3};
 use lucent::Rgb;
 use lucent::accel::AccelKind;
 use lucent::camera::Camera;
@@ -90,6 +90,7 @@ pub fn build(desc: &SceneDesc, source: &Source, base_dir: &Path) -> Result<Loade
         builder.light(light(l, source)?);
     }
 
+    let mut meshes = MeshCache::new();
     for o in &desc.objects {
         let d = o.get_ref();
         let name = d.material.get_ref();
@@ -109,7 +110,7 @@ pub fn build(desc: &SceneDesc, source: &Source, base_dir: &Path) -> Result<Loade
                 format!("unknown material `{name}` ({hint})"),
             ));
         };
-        add_object(&mut builder, o, material, source, base_dir)?;
+        add_object(&mut builder, &mut meshes, o, material, source, base_dir)?;
     }
 
     let scene = builder
@@ -252,8 +253,12 @@ fn light(l: &Spanned<crate::desc::LightDesc>, source: &Source) -> Result<Light, 
     }
 }
 
+/// Meshes already stored, by canonical file path.
+type MeshCache = HashMap<std::path::PathBuf, u32>;
+
 fn add_object(
     builder: &mut SceneBuilder,
+    meshes: &mut MeshCache,
     o: &Spanned<ObjectDesc>,
     material: u32,
     source: &Source,
@@ -340,34 +345,35 @@ fn add_object(
                     format!("mesh file `{}` not found", path.display()),
                 ));
             }
-            let obj = read_obj(&path)?;
-            let transform = mesh_transform(d);
-            let positions = obj.positions.iter().map(|&p| transform(p)).collect();
-            let mut triangles = obj.triangles;
-            let scale = d.scale.as_ref().map_or(Vec3::ONE, |s| s.get_ref().0);
-            if scale.x * scale.y * scale.z < 0.0 {
-                // A mirroring scale turns the winding inside out; swap it back so normals stay outward.
-                triangles.iter_mut().for_each(|t| t.swap(1, 2));
-            }
-            builder.mesh(
-                Mesh {
-                    positions,
-                    triangles,
-                },
-                material,
-            );
+            // A file placed many times is read and stored once: the objects are instances of it.
+            let key = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
+            let mesh = match meshes.get(&key) {
+                Some(&id) => id,
+                None => {
+                    let obj = read_obj(&path)?;
+                    let id = builder.add_mesh(Mesh {
+                        positions: obj.positions,
+                        triangles: obj.triangles,
+                    });
+                    meshes.insert(key, id);
+                    id
+                }
+            };
+            builder.instance(mesh, mesh_transform(d), material);
         }
     }
     Ok(())
 }
 
 /// `p ↦ translate + Rz·Ry·Rx·(scale ∘ p)`: scale, then rotate about x, y, z in that order, then move.
-fn mesh_transform(d: &ObjectDesc) -> impl Fn(Vec3) -> Vec3 {
+fn mesh_transform(d: &ObjectDesc) -> Affine3A {
     let scale = d.scale.as_ref().map_or(Vec3::ONE, |s| s.get_ref().0);
     let deg = d.rotate.as_ref().map_or(Vec3::ZERO, |r| r.get_ref().0);
     let rotation = Mat3::from_rotation_z(deg.z.to_radians())
         * Mat3::from_rotation_y(deg.y.to_radians())
         * Mat3::from_rotation_x(deg.x.to_radians());
     let translate = d.translate.as_ref().map_or(Vec3::ZERO, |t| t.get_ref().0);
-    move |p| translate + rotation * (scale * p)
+    Affine3A::from_translation(translate)
+        * Affine3A::from_mat3(rotation)
+        * Affine3A::from_scale(scale)
 }

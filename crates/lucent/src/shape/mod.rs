@@ -1,14 +1,17 @@
 //! Geometry: spheres, planes, triangles and triangle meshes.
 //!
-//! Shapes are flat data in the scene's arrays. The accelerators index *primitives*, the
-//! bounded pieces a ray can hit: a sphere, or one triangle of a mesh. Planes are unbounded and
-//! tested apart from the accelerator.
+//! Shapes are flat data in the scene's arrays. Ray queries go through two levels of
+//! accelerators: the top level indexes *primitives* (a sphere, or an instance of a mesh), and
+//! each mesh has its own accelerator over its triangles, shared by all its instances. Planes
+//! are unbounded and tested apart from the accelerators.
 
+pub mod instance;
 pub mod mesh;
 pub mod plane;
 pub mod sphere;
 pub mod triangle;
 
+pub use instance::{Instance, Transform};
 pub use mesh::Mesh;
 pub use plane::Plane;
 pub use sphere::{Roots, Sphere};
@@ -16,18 +19,13 @@ pub use triangle::{TriangleHit, TriangleTest};
 
 use glam::Vec3;
 
-/// A bounded primitive, as the accelerator sees it by index.
+/// A bounded primitive of the top-level accelerator, by index.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Primitive {
     /// `Scene::spheres[i]`.
     Sphere(u32),
-    /// Triangle `index` of `Scene::meshes[mesh]`.
-    Triangle {
-        /// Which mesh.
-        mesh: u32,
-        /// Which of its triangles.
-        index: u32,
-    },
+    /// `Scene::instances[i]`: a placed mesh, with an accelerator of its own over its triangles.
+    Instance(u32),
 }
 
 /// What a ray hit, and the surface there.

@@ -1,0 +1,280 @@
+//! Collecting a scene's parts, checking them, and building the accelerators.
+
+use super::{MeshEntry, ObjectTag, Scene};
+use crate::Rgb;
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::material::Material;
+use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, Transform, TriangleTest};
+use glam::Affine3A;
+use lucent_accel::{Aabb, AccelKind};
+use std::time::Instant;
+use thiserror::Error;
+
+/// Why a scene cannot be built.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum SceneError {
+    /// A shape names a material that does not exist.
+    #[error("object {object} uses material {material}, but the scene has {count} materials")]
+    NoSuchMaterial {
+        /// The object's id.
+        object: u32,
+        /// The material index it gave.
+        material: u32,
+        /// How many materials exist.
+        count: usize,
+    },
+    /// An instance names a mesh that does not exist.
+    #[error("object {object} places mesh {mesh}, but the scene has {count} meshes")]
+    NoSuchMesh {
+        /// The object's id.
+        object: u32,
+        /// The mesh index it gave.
+        mesh: u32,
+        /// How many meshes exist.
+        count: usize,
+    },
+    /// An instance's transform cannot be inverted.
+    #[error("object {0}'s transform is singular (it flattens the mesh) or not finite")]
+    SingularTransform(u32),
+    /// More primitives than indices can address.
+    #[error("the scene has {0} primitives; at most {max} are supported", max = u32::MAX)]
+    TooManyPrimitives(usize),
+    /// A mesh index points past its vertex array.
+    #[error("mesh {mesh}: triangle {triangle} uses vertex {vertex}, but it has {count}")]
+    VertexOutOfRange {
+        /// The mesh's index.
+        mesh: u32,
+        /// The triangle's index.
+        triangle: usize,
+        /// The bad vertex index.
+        vertex: u32,
+        /// How many vertices exist.
+        count: usize,
+    },
+}
+
+/// Collects the parts of a scene, then builds it.
+#[derive(Clone, Debug)]
+pub struct SceneBuilder {
+    camera: Camera,
+    background: Rgb,
+    ambient: Rgb,
+    materials: Vec<Material>,
+    lights: Vec<Light>,
+    spheres: Vec<(Sphere, ObjectTag)>,
+    planes: Vec<(Plane, ObjectTag)>,
+    meshes: Vec<Mesh>,
+    instances: Vec<(u32, Affine3A, ObjectTag)>,
+    objects: u32,
+    accelerator: AccelKind,
+    triangle_test: TriangleTest,
+}
+
+impl SceneBuilder {
+    /// An empty scene seen by `camera`: black background, no ambient light.
+    pub fn new(camera: Camera) -> Self {
+        Self {
+            camera,
+            background: Rgb::BLACK,
+            ambient: Rgb::BLACK,
+            materials: vec![],
+            lights: vec![],
+            spheres: vec![],
+            planes: vec![],
+            meshes: vec![],
+            instances: vec![],
+            objects: 0,
+            accelerator: AccelKind::default(),
+            triangle_test: TriangleTest::default(),
+        }
+    }
+
+    /// The colour of rays that hit nothing.
+    pub fn background(&mut self, c: Rgb) -> &mut Self {
+        self.background = c;
+        self
+    }
+
+    /// The ambient light `Ia`.
+    pub fn ambient(&mut self, c: Rgb) -> &mut Self {
+        self.ambient = c;
+        self
+    }
+
+    /// Which accelerator to build (at both levels).
+    pub fn accelerator(&mut self, kind: AccelKind) -> &mut Self {
+        self.accelerator = kind;
+        self
+    }
+
+    /// Which ray–triangle test to use.
+    pub fn triangle_test(&mut self, test: TriangleTest) -> &mut Self {
+        self.triangle_test = test;
+        self
+    }
+
+    /// Adds a material; returns its index.
+    pub fn material(&mut self, m: Material) -> u32 {
+        self.materials.push(m);
+        self.materials.len() as u32 - 1
+    }
+
+    /// Adds a light.
+    pub fn light(&mut self, l: Light) -> &mut Self {
+        self.lights.push(l);
+        self
+    }
+
+    fn next_tag(&mut self, material: u32) -> ObjectTag {
+        self.objects += 1;
+        ObjectTag {
+            material,
+            object: self.objects - 1,
+        }
+    }
+
+    /// Adds a sphere; returns its object id.
+    pub fn sphere(&mut self, s: Sphere, material: u32) -> u32 {
+        let tag = self.next_tag(material);
+        self.spheres.push((s, tag));
+        tag.object
+    }
+
+    /// Adds an infinite plane; returns its object id.
+    pub fn plane(&mut self, p: Plane, material: u32) -> u32 {
+        let tag = self.next_tag(material);
+        self.planes.push((p, tag));
+        tag.object
+    }
+
+    /// Stores a mesh without placing it; returns its index for [`SceneBuilder::instance`].
+    pub fn add_mesh(&mut self, m: Mesh) -> u32 {
+        self.meshes.push(m);
+        self.meshes.len() as u32 - 1
+    }
+
+    /// Places stored mesh `mesh` by `to_world` (object to world space); returns its object id.
+    pub fn instance(&mut self, mesh: u32, to_world: Affine3A, material: u32) -> u32 {
+        let tag = self.next_tag(material);
+        self.instances.push((mesh, to_world, tag));
+        tag.object
+    }
+
+    /// Adds a mesh placed as it is (a single triangle is a mesh of one); returns its object id.
+    pub fn mesh(&mut self, m: Mesh, material: u32) -> u32 {
+        let id = self.add_mesh(m);
+        self.instance(id, Affine3A::IDENTITY, material)
+    }
+
+    fn check(&self) -> Result<(), SceneError> {
+        let tags = self
+            .spheres
+            .iter()
+            .map(|s| s.1)
+            .chain(self.planes.iter().map(|s| s.1));
+        for tag in tags.chain(self.instances.iter().map(|i| i.2)) {
+            if tag.material as usize >= self.materials.len() {
+                let count = self.materials.len();
+                return Err(SceneError::NoSuchMaterial {
+                    object: tag.object,
+                    material: tag.material,
+                    count,
+                });
+            }
+        }
+        for &(mesh, _, tag) in &self.instances {
+            if mesh as usize >= self.meshes.len() {
+                return Err(SceneError::NoSuchMesh {
+                    object: tag.object,
+                    mesh,
+                    count: self.meshes.len(),
+                });
+            }
+        }
+        for (i, mesh) in self.meshes.iter().enumerate() {
+            let count = mesh.positions.len();
+            for (triangle, tri) in mesh.triangles.iter().enumerate() {
+                if let Some(&vertex) = tri.iter().find(|&&v| v as usize >= count) {
+                    return Err(SceneError::VertexOutOfRange {
+                        mesh: i as u32,
+                        triangle,
+                        vertex,
+                        count,
+                    });
+                }
+            }
+            if mesh.triangles.len() > u32::MAX as usize {
+                return Err(SceneError::TooManyPrimitives(mesh.triangles.len()));
+            }
+        }
+        let top = self.spheres.len() + self.instances.len();
+        if top > u32::MAX as usize {
+            return Err(SceneError::TooManyPrimitives(top));
+        }
+        Ok(())
+    }
+
+    /// Checks the parts and builds the accelerators.
+    pub fn build(self) -> Result<Scene, SceneError> {
+        self.check()?;
+        let start = Instant::now();
+        let kind = self.accelerator;
+        let meshes: Vec<MeshEntry> = self
+            .meshes
+            .into_iter()
+            .map(|mesh| {
+                let boxes: Vec<Aabb> = (0..mesh.triangles.len() as u32)
+                    .map(|t| mesh.triangle_bounds(t))
+                    .collect();
+                let bounds = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(*b));
+                MeshEntry {
+                    accel: kind.build(&boxes),
+                    bounds,
+                    mesh,
+                }
+            })
+            .collect();
+        let mut instances = Vec::with_capacity(self.instances.len());
+        for (mesh, to_world, tag) in self.instances {
+            let transform = if to_world == Affine3A::IDENTITY {
+                None
+            } else {
+                Some(Transform::new(to_world).ok_or(SceneError::SingularTransform(tag.object))?)
+            };
+            instances.push((Instance { mesh, transform }, tag));
+        }
+
+        let mut primitives = Vec::with_capacity(self.spheres.len() + instances.len());
+        let mut boxes = Vec::with_capacity(primitives.capacity());
+        for (i, (s, _)) in self.spheres.iter().enumerate() {
+            primitives.push(Primitive::Sphere(i as u32));
+            boxes.push(s.bounds());
+        }
+        for (i, (inst, _)) in instances.iter().enumerate() {
+            primitives.push(Primitive::Instance(i as u32));
+            let local = meshes[inst.mesh as usize].bounds;
+            boxes.push(inst.transform.map_or(local, |t| t.bounds_to_world(local)));
+        }
+        let accel = kind.build(&boxes);
+        let build_time = start.elapsed();
+        let bounds = boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x));
+        Ok(Scene {
+            camera: self.camera,
+            background: self.background,
+            ambient: self.ambient,
+            materials: self.materials,
+            lights: self.lights,
+            spheres: self.spheres,
+            planes: self.planes,
+            meshes,
+            instances,
+            objects: self.objects,
+            primitives,
+            accel,
+            bounds,
+            triangle_test: self.triangle_test,
+            build_time,
+        })
+    }
+}

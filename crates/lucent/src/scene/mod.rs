@@ -1,0 +1,164 @@
+//! The render-time scene: flat arrays of shapes, materials and lights, and accelerators.
+//!
+//! Built once with a [`SceneBuilder`] and immutable afterwards; every query takes `&self`, so
+//! threads share one scene.
+//!
+//! Queries go through two levels: a top-level accelerator over spheres and mesh instances, and
+//! one accelerator per mesh over its triangles, entered with the ray carried into the mesh's
+//! object space. Infinite planes are tested beside them.
+//!
+//! Ties: when two surfaces are hit at exactly the same `t`, the one added first wins (planes
+//! before spheres, spheres before meshes, lower triangle index first), whatever the
+//! accelerator, so that every accelerator renders the same image.
+
+mod builder;
+mod query;
+
+pub use builder::{SceneBuilder, SceneError};
+
+use crate::Rgb;
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::material::Material;
+use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, TriangleTest};
+use lucent_accel::{Aabb, AccelKind, AnyAccelerator};
+use std::time::Duration;
+
+/// Which material a shape wears and which scene object it belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ObjectTag {
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+    /// The object's id, in the order objects were added.
+    pub object: u32,
+}
+
+/// A mesh with the accelerator over its triangles (in object space).
+#[derive(Clone, Debug)]
+struct MeshEntry {
+    mesh: Mesh,
+    accel: AnyAccelerator,
+    bounds: Aabb,
+}
+
+/// A scene ready to render.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The camera and image resolution.
+    pub camera: Camera,
+    /// The colour of rays that hit nothing.
+    pub background: Rgb,
+    /// The ambient light `Ia`.
+    pub ambient: Rgb,
+    /// Materials, referred to by index.
+    pub materials: Vec<Material>,
+    /// Light sources.
+    pub lights: Vec<Light>,
+    spheres: Vec<(Sphere, ObjectTag)>,
+    planes: Vec<(Plane, ObjectTag)>,
+    meshes: Vec<MeshEntry>,
+    instances: Vec<(Instance, ObjectTag)>,
+    objects: u32,
+    /// Top-level primitives: spheres first, then instances.
+    primitives: Vec<Primitive>,
+    accel: AnyAccelerator,
+    bounds: Aabb,
+    triangle_test: TriangleTest,
+    build_time: Duration,
+}
+
+/// Counts of what a scene holds, for `lucent info` and statistics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneCounts {
+    /// Objects as the scene file lists them.
+    pub objects: u32,
+    /// Spheres.
+    pub spheres: usize,
+    /// Infinite planes.
+    pub planes: usize,
+    /// Distinct triangle meshes stored (single triangles included).
+    pub meshes: usize,
+    /// Placements of meshes.
+    pub instances: usize,
+    /// Triangles as rendered, over all instances.
+    pub triangles: usize,
+    /// Triangles stored, over the distinct meshes.
+    pub unique_triangles: usize,
+    /// Light sources.
+    pub lights: usize,
+    /// Materials.
+    pub materials: usize,
+}
+
+/// The accelerators of a scene, measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AccelReport {
+    /// Which structure.
+    pub kind: AccelKind,
+    /// Wall time of building every level.
+    pub build_time: Duration,
+    /// Nodes or cells over all levels.
+    pub nodes: usize,
+    /// Deepest path: top level plus the deepest mesh level.
+    pub depth: usize,
+    /// Bytes of all the structures (not of the geometry).
+    pub bytes: usize,
+    /// Primitives indexed: top-level primitives plus stored triangles.
+    pub primitives: usize,
+}
+
+impl Scene {
+    /// What the scene holds.
+    pub fn counts(&self) -> SceneCounts {
+        SceneCounts {
+            objects: self.objects,
+            spheres: self.spheres.len(),
+            planes: self.planes.len(),
+            meshes: self.meshes.len(),
+            instances: self.instances.len(),
+            triangles: self
+                .instances
+                .iter()
+                .map(|(i, _)| self.meshes[i.mesh as usize].mesh.triangles.len())
+                .sum(),
+            unique_triangles: self.meshes.iter().map(|m| m.mesh.triangles.len()).sum(),
+            lights: self.lights.len(),
+            materials: self.materials.len(),
+        }
+    }
+
+    /// The bounding box of every bounded shape (infinite planes are left out).
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// The accelerator in use.
+    pub fn accelerator(&self) -> AccelKind {
+        self.accel.kind()
+    }
+
+    /// Size, shape and build time of the accelerators.
+    pub fn accel_report(&self) -> AccelReport {
+        let top = self.accel.info();
+        let levels = self.meshes.iter().map(|m| m.accel.info());
+        let (mut nodes, mut bytes, mut mesh_depth) = (top.nodes, top.bytes, 0);
+        for info in levels {
+            nodes += info.nodes;
+            bytes += info.bytes;
+            mesh_depth = mesh_depth.max(info.depth);
+        }
+        AccelReport {
+            kind: self.accel.kind(),
+            build_time: self.build_time,
+            nodes,
+            depth: top.depth + mesh_depth,
+            bytes,
+            primitives: self.primitives.len() + self.counts().unique_triangles,
+        }
+    }
+
+    /// The ray–triangle test in use.
+    pub fn triangle_test(&self) -> TriangleTest {
+        self.triangle_test
+    }
+}

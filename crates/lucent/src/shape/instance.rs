@@ -1,0 +1,139 @@
+//! Instances: one mesh placed in the world by an affine transform, stored once however many
+//! times it is placed.
+//!
+//! A ray meets an instance in the mesh's own (object) space: its origin and direction are
+//! carried there by the inverse transform, the direction left unnormalised, so that the ray
+//! parameter `t` is the same in both spaces and hits compare directly with world-space ones.
+
+use glam::{Affine3A, Mat3, Vec3};
+use lucent_accel::{Aabb, Ray};
+
+/// An invertible affine map from object space to world space, with what queries need of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    to_world: Affine3A,
+    to_object: Affine3A,
+    /// The inverse transpose of the linear part: it carries normals to world space.
+    normal_to_world: Mat3,
+}
+
+impl Transform {
+    /// The transform `to_world`, or `None` when it cannot be inverted (or is not finite).
+    pub fn new(to_world: Affine3A) -> Option<Self> {
+        let det = to_world.matrix3.determinant();
+        if !(det.is_finite() && det != 0.0 && to_world.translation.is_finite()) {
+            return None;
+        }
+        let to_object = to_world.inverse();
+        let normal_to_world = Mat3::from(to_world.matrix3).inverse().transpose();
+        Some(Self {
+            to_world,
+            to_object,
+            normal_to_world,
+        })
+    }
+
+    /// The object-to-world map.
+    pub fn to_world(&self) -> Affine3A {
+        self.to_world
+    }
+
+    /// `ray` in object space, with the same parameter `t`.
+    #[inline]
+    pub fn ray_to_object(&self, ray: &Ray) -> Ray {
+        Ray::new(
+            self.to_object.transform_point3(ray.origin),
+            self.to_object.transform_vector3(ray.dir),
+        )
+    }
+
+    /// A point from object to world space.
+    #[inline]
+    pub fn point_to_world(&self, p: Vec3) -> Vec3 {
+        self.to_world.transform_point3(p)
+    }
+
+    /// A unit normal from object to world space (unit again). It keeps its side of the surface
+    /// even under a mirroring transform, where the winding's normal would flip.
+    #[inline]
+    pub fn normal_to_world(&self, n: Vec3) -> Vec3 {
+        (self.normal_to_world * n).normalize()
+    }
+
+    /// The world box around an object-space box (the box of its eight transformed corners).
+    pub fn bounds_to_world(&self, b: Aabb) -> Aabb {
+        if b.is_empty() {
+            return b;
+        }
+        Aabb::from_points((0..8).map(|k| {
+            let pick = |bit: usize, axis: usize| {
+                if k & bit == 0 {
+                    b.min[axis]
+                } else {
+                    b.max[axis]
+                }
+            };
+            self.point_to_world(Vec3::new(pick(1, 0), pick(2, 1), pick(4, 2)))
+        }))
+    }
+}
+
+/// Mesh `mesh` of the scene, placed by `transform` (`None`: as it is).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance {
+    /// Index of the mesh in the scene.
+    pub mesh: u32,
+    /// Object to world; `None` for the identity, which skips the ray transform.
+    pub transform: Option<Transform>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Quat;
+
+    #[test]
+    fn rays_keep_their_parameter_in_object_space() {
+        let m = Affine3A::from_scale_rotation_translation(
+            Vec3::new(2.0, 3.0, 0.5),
+            Quat::from_rotation_y(0.7),
+            Vec3::new(1.0, -2.0, 5.0),
+        );
+        let t = Transform::new(m).unwrap();
+        let ray = Ray::new(
+            Vec3::new(0.3, 0.1, -4.0),
+            Vec3::new(0.2, 0.1, 1.0).normalize(),
+        );
+        let local = t.ray_to_object(&ray);
+        for s in [0.0, 1.0, 7.5] {
+            let back = t.point_to_world(local.at(s));
+            assert!(
+                (back - ray.at(s)).length() < 1e-4,
+                "{back} vs {}",
+                ray.at(s)
+            );
+        }
+    }
+
+    #[test]
+    fn normals_stay_perpendicular_and_outward() {
+        // A shear: a plain linear map would tilt the normal off the surface.
+        let m = Affine3A::from_mat3(Mat3::from_cols(Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Z));
+        let t = Transform::new(m).unwrap();
+        let (u, v) = (
+            t.to_world.transform_vector3(Vec3::X),
+            t.to_world.transform_vector3(Vec3::Z),
+        );
+        let n = t.normal_to_world(Vec3::Y);
+        assert!(n.dot(u).abs() < 1e-6 && n.dot(v).abs() < 1e-6 && n.y > 0.0);
+        // A mirror in x keeps a +y normal pointing to +y.
+        let mirror = Transform::new(Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0))).unwrap();
+        assert_eq!(mirror.normal_to_world(Vec3::Y), Vec3::Y);
+    }
+
+    #[test]
+    fn singular_transforms_are_refused() {
+        assert!(Transform::new(Affine3A::from_scale(Vec3::new(1.0, 0.0, 1.0))).is_none());
+        assert!(Transform::new(Affine3A::from_translation(Vec3::NAN)).is_none());
+    }
+}
