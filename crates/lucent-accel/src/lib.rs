@@ -23,6 +23,8 @@ pub mod bvh;
 mod mailbox;
 pub mod octree;
 pub mod ray;
+pub mod triangle;
+pub mod wide_bvh;
 
 pub use aabb::Aabb;
 pub use accelerator::{AccelInfo, AccelKind, Accelerator, AnyAccelerator, TraversalStats};
@@ -31,3 +33,4 @@ pub use brute_force::BruteForce;
 pub use bvh::Bvh;
 pub use octree::Octree;
 pub use ray::Ray;
+pub use wide_bvh::{WideBvh, WideTriangleBvh};

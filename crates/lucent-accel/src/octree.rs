@@ -10,6 +10,7 @@
 use crate::aabb::CULL_SLACK;
 use crate::mailbox::Mailbox;
 use crate::{Aabb, Accelerator, Ray, TraversalStats};
+use arrayvec::ArrayVec;
 use glam::Vec3;
 
 /// Marks an interior cell in [`Cell::count`].
@@ -185,12 +186,9 @@ impl Octree {
             return false;
         };
         // Each level pushes at most 8 cells (a ray crosses at most 4 octants of a cell).
-        let mut stack = [(0usize, 0f32, 0f32); 8 * 13];
-        stack[0] = (0, t0, t1);
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let (cell, entry, exit) = stack[sp];
+        let mut stack: ArrayVec<(usize, f32, f32), { 8 * 13 }> = ArrayVec::new();
+        stack.push((0, t0, t1));
+        while let Some((cell, entry, exit)) = stack.pop() {
             // With the box test's own slack: an entry rounded up must not hide a tie.
             if entry > *t_max * CULL_SLACK {
                 continue;
@@ -215,8 +213,7 @@ impl Octree {
                 }
             }
             kids[..n].sort_unstable_by(|x, y| y.1.total_cmp(&x.1));
-            stack[sp..sp + n].copy_from_slice(&kids[..n]);
-            sp += n;
+            stack.extend(kids[..n].iter().copied());
         }
         false
     }

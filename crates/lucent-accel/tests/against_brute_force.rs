@@ -161,8 +161,10 @@ proptest! {
         let oracle = AccelKind::BruteForce.build(&boxes);
         for kind in AccelKind::ALL {
             let accel = kind.build(&boxes);
-            if let lucent_accel::AnyAccelerator::Bvh(bvh) = &accel {
-                prop_assert_eq!(bvh.validate(&boxes), Ok(()));
+            match &accel {
+                lucent_accel::AnyAccelerator::Bvh(bvh) => prop_assert_eq!(bvh.validate(&boxes), Ok(())),
+                lucent_accel::AnyAccelerator::Wide(wide) => prop_assert_eq!(wide.validate(&boxes), Ok(())),
+                _ => {}
             }
             for (ray, segment) in &rays {
                 let (want_hit, want_occluded, mut want_all) = query(&oracle, &prims, ray, *segment);

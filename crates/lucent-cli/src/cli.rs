@@ -20,6 +20,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Print what a scene holds: objects, triangles, lights, materials and bounds.
     Info(InfoArgs),
+    /// Measure every accelerator on the same rays: build time, memory, million rays per second.
+    Bench(BenchArgs),
 }
 
 /// Integrators selectable on the command line.
@@ -64,8 +66,8 @@ pub struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=1000))]
     pub max_depth: Option<u32>,
     /// Render threads; 0 uses every core.
-    #[arg(long, default_value_t = 0)]
-    pub threads: usize,
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
+    pub threads: u16,
     /// Seed of the random sample positions (overrides the scene file).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -82,4 +84,29 @@ pub struct RenderArgs {
 pub struct InfoArgs {
     /// Scene file (TOML); the built-in default scene when omitted.
     pub scene: Option<PathBuf>,
+}
+
+/// `lucent bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Scene files (TOML) or OBJ meshes; default: examples/*.toml and the shared meshes.
+    pub scenes: Vec<PathBuf>,
+    /// Accelerators to measure, comma-separated; default: all.
+    #[arg(long, value_delimiter = ',')]
+    pub accel: Vec<AccelKind>,
+    /// Thread counts to measure, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "1,2", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Vec<u16>,
+    /// Incoherent and occlusion rays per set (camera rays: 1024×1024).
+    #[arg(long, default_value_t = 1 << 20)]
+    pub rays: usize,
+    /// Seed of the random rays.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Also write the results as CSV here.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// Also write the results as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
 }

@@ -1,5 +1,6 @@
 //! `lucent`: render scenes and inspect them from the command line.
 
+mod bench;
 mod cli;
 mod info;
 mod output;
@@ -17,6 +18,7 @@ fn main() -> ExitCode {
     let result = match args.command {
         cli::Command::Render(a) => render::run(&a),
         cli::Command::Info(a) => info::run(&a),
+        cli::Command::Bench(a) => bench::run(&a),
     };
     match result {
         Ok(code) => code,

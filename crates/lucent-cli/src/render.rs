@@ -70,7 +70,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     apply_overrides(&mut file, args);
     let loaded = file.build()?;
     let mut settings = loaded.settings;
-    settings.threads = args.threads;
+    settings.threads = usize::from(args.threads);
 
     let cancel = Arc::new(AtomicBool::new(false));
     let handler_flag = Arc::clone(&cancel);
@@ -124,7 +124,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
 fn summary(output: &Path, w: u32, h: u32, spp: u32, s: &RenderStats) -> String {
     let r = &s.rays;
     format!(
-        "{}: {w}×{h}, {spp} spp, {} rays (camera {}, shadow {}, reflected {}, refracted {}), {:.3} s, {:.2} Mrays/s, {} threads",
+        "{}: {w}×{h}, {spp} spp, {} rays (camera {}, shadow {}, reflected {}, refracted {}), {:.3} s, {:.3} Mrays/s, {} threads",
         output.display(),
         r.total(),
         r.camera,

@@ -23,8 +23,13 @@ use toml::Spanned;
 
 /// Largest image side, in pixels.
 pub const MAX_IMAGE_SIDE: u32 = 65_536;
-/// Largest number of pixels in an image (the film holds 16 bytes per pixel).
-pub const MAX_PIXELS: u64 = 1 << 28;
+/// Largest number of pixels in an image: 8192 × 8192. A render holds about 32 bytes per pixel
+/// at its peak (the film's sums and weights, then the linear image and its encoding while the
+/// file is written), 2 GiB at this size.
+pub const MAX_PIXELS: u64 = 1 << 26;
+/// Sphere radii outside this range are refused: in single precision, the square of the radius
+/// would underflow or overflow and the sphere would silently vanish.
+pub const RADIUS_RANGE: std::ops::RangeInclusive<f32> = 1e-8..=1e15;
 /// Largest number of samples per pixel.
 pub const MAX_SAMPLES: u32 = 1 << 20;
 /// Deepest recursion allowed.
@@ -301,6 +306,14 @@ fn add_object(
                 radius.span(),
                 r > 0.0,
                 &format!("a sphere's radius must be positive, got {r}"),
+            )?;
+            let (lo, hi) = (RADIUS_RANGE.start(), RADIUS_RANGE.end());
+            let in_range = RADIUS_RANGE.contains(&r);
+            check(
+                source,
+                radius.span(),
+                in_range,
+                &format!("a sphere's radius must be between {lo:e} and {hi:e}, got {r:e}"),
             )?;
             builder.sphere(Sphere { center, radius: r }, material);
         }

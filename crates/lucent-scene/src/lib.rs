@@ -7,11 +7,13 @@
 //!
 //! The format is documented in `docs/scene-format.md`.
 
+pub mod bare_mesh;
 pub mod build;
 pub mod desc;
 pub mod error;
 pub mod obj;
 
+pub use bare_mesh::bare_mesh_scene;
 pub use build::{Loaded, build};
 pub use desc::SceneDesc;
 pub use error::{LoadError, Source};
@@ -93,5 +95,15 @@ impl SceneFile {
             },
             &self.base_dir,
         )
+    }
+}
+
+/// The folder of shared test data (meshes no one here wrote): `$LUCENT_DATA` if set, else
+/// `../shared/data` beside the workspace root. Tests and benchmarks that need it skip, with a
+/// message, where it is absent.
+pub fn data_dir() -> PathBuf {
+    match std::env::var_os("LUCENT_DATA") {
+        Some(dir) => PathBuf::from(dir),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"),
     }
 }

@@ -128,6 +128,19 @@ fn negative_radius() {
 }
 
 #[test]
+fn sphere_radius_out_of_range() {
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1e20\nmaterial = \"m\"\n"
+    );
+    assert_error(
+        &text,
+        10,
+        10,
+        "radius must be between 1e-8 and 1e15, got 1e20",
+    );
+}
+
+#[test]
 fn zero_normal() {
     let text = format!(
         "{CAMERA}{MATERIAL}[[object]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 0]\nmaterial = \"m\"\n"
@@ -144,7 +157,17 @@ fn nan_and_infinity() {
     let text = format!(
         "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = inf\nmaterial = \"m\"\n"
     );
-    assert_error(&text, 10, 10, "expected a finite number, found inf");
+    assert_error(
+        &text,
+        10,
+        10,
+        "expected a finite number (at most about 3.4e38), found inf",
+    );
+    // Beyond f32's range, shown briefly.
+    let text = format!(
+        "{CAMERA}{MATERIAL}[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1e300\nmaterial = \"m\"\n"
+    );
+    assert_error(&text, 10, 10, "found 1e300");
 }
 
 #[test]

@@ -7,8 +7,10 @@ use thiserror::Error;
 /// Why a camera cannot be built.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum CameraError {
-    /// `look_at` equals `eye`: no view direction.
-    #[error("the camera's eye and look_at are the same point")]
+    /// `look_at` equals `eye` (or they are too far apart for their difference to be finite).
+    #[error(
+        "the camera's eye and look_at are the same point, or too far apart to give a direction"
+    )]
     NoViewDirection,
     /// `up` is zero or parallel to the view direction: the image's roll is undefined.
     #[error("the camera's up vector is zero or parallel to the view direction")]

@@ -89,7 +89,7 @@ pub enum RenderError {
 /// Renders `scene` with `settings`.
 ///
 /// `progress(done, total)` is called from worker threads as pixels finish. Setting `cancel`
-/// stops the render within one row of a tile per thread; the film then holds every row
+/// stops the render within one pixel per thread; the film then holds every pixel
 /// finished so far, and `complete` is false.
 pub fn render(
     scene: &Scene,
@@ -144,7 +144,7 @@ pub fn render(
     })
 }
 
-/// Traces every sample of `tile` into a film of the tile's size; stops between rows when
+/// Traces every sample of `tile` into a film of the tile's size; stops between pixels when
 /// cancelled. Returns the film, the rays traced and the pixels finished.
 fn render_tile(
     scene: &Scene,
@@ -156,11 +156,11 @@ fn render_tile(
     let mut stats = RayStats::default();
     let mut pixels = 0;
     let width = u64::from(scene.camera.width());
-    for y in tile.y0..tile.y1 {
-        if cancel.load(Ordering::Relaxed) {
-            break;
-        }
+    'rows: for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
+            if cancel.load(Ordering::Relaxed) {
+                break 'rows;
+            }
             let pixel = u64::from(y) * width + u64::from(x);
             for s in 0..settings.spp {
                 let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);

@@ -76,7 +76,7 @@ proptest! {
         quad in (prop::array::uniform2(-5.0f32..5.0), prop::array::uniform2(-5.0f32..5.0), 0.2f32..5.0, 0.2f32..5.0),
         rotation in (direction(), 0.0f32..6.3),
         offset in point(),
-        s in 0.0f32..=1.0,
+        s in 0.001f32..0.999,
         dir in direction(),
         dist in 0.5f32..50.0,
     ) {
@@ -91,7 +91,9 @@ proptest! {
         let lift = |p: glam::Vec2| q * p.extend(0.0) + offset;
         let (a, b, c, d) = (lift(a2), lift(b2), lift(c2), lift(d2));
         let n = q * Vec3::Z;
-        prop_assume!(dir.dot(n).abs() > 1e-3);
+        // Not grazing: at a shallow angle, the target's rounding error (~1e-7) moves the
+        // crossing point along the plane by error / sin(angle), possibly past a vertex.
+        prop_assume!(dir.dot(n).abs() > 0.05);
         let target = a.lerp(b, s);
         let ray = Ray::new(target - dist * dir, dir);
         let hit = watertight(&ray, [a, b, c], f32::INFINITY).is_some()
@@ -100,7 +102,7 @@ proptest! {
     }
 }
 
-/// Every ray from inside a closed mesh hits it (with either method, through the scene), and
+/// Every ray from inside a closed mesh hits it (watertight test, through the scene), and
 /// every ray that enters it from outside leaves it again.
 #[test]
 fn rays_inside_a_closed_mesh_always_hit_it() {
@@ -123,8 +125,10 @@ fn rays_inside_a_closed_mesh_always_hit_it() {
             let dir = unit_vector(next(), next());
             let ray = Ray::new(offset - 10.0 * dir + 0.5 * unit_vector(next(), next()), dir);
             let entry = scene.intersect(&ray, &mut stats).expect("enters");
-            let inside = lucent::spawn::spawn_ray(entry.point, entry.normal, dir);
-            let exit = scene.intersect(&inside, &mut stats).expect("leaves again");
+            let (inside, from) = lucent::spawn::spawn_ray(&entry, dir);
+            let exit = scene
+                .intersect_from(&inside, Some(from), &mut stats)
+                .expect("leaves again");
             assert!(exit.t > 0.5, "left after only t = {}: a self-hit", exit.t);
         }
     }

@@ -3,8 +3,11 @@
 use super::Bvh;
 use crate::aabb::CULL_SLACK;
 use crate::{Accelerator, Ray, TraversalStats};
+use arrayvec::ArrayVec;
 
-/// Deepest possible tree: `max_sah_depth` plus log2 of 2^32 primitives, with room to spare.
+/// Deepest possible tree: `max_sah_depth` (48) plus log2 of 2^32 primitives, with room to
+/// spare; a closest-hit traversal holds at most one entry per level. (An `ArrayVec` is not
+/// zeroed on creation, unlike an array: that memset cost more than a small traversal.)
 const STACK_SIZE: usize = 128;
 
 impl Bvh {
@@ -31,8 +34,7 @@ impl Bvh {
         if self.nodes.is_empty() || self.enter::<PARALLEL>(0, ray, t_max).is_none() {
             return false;
         }
-        let mut stack = [(0u32, 0f32); STACK_SIZE];
-        let mut sp = 0;
+        let mut stack: ArrayVec<(u32, f32), STACK_SIZE> = ArrayVec::new();
         let mut node = 0usize;
         let mut hit = false;
         loop {
@@ -52,8 +54,7 @@ impl Bvh {
                 ) {
                     (Some(ta), Some(tb)) => {
                         let (near, far, t_far) = if ta <= tb { (a, b, tb) } else { (b, a, ta) };
-                        stack[sp] = (far as u32, t_far);
-                        sp += 1;
+                        stack.push((far as u32, t_far));
                         node = near;
                         continue;
                     }
@@ -70,11 +71,9 @@ impl Bvh {
             }
             // Pop the next subtree that may still hold a nearer hit.
             loop {
-                if sp == 0 {
+                let Some((next, t_entry)) = stack.pop() else {
                     return hit;
-                }
-                sp -= 1;
-                let (next, t_entry) = stack[sp];
+                };
                 // With the box test's slack: an entry rounded up must not hide a tie.
                 if t_entry <= t_max * CULL_SLACK {
                     node = next as usize;
@@ -97,11 +96,11 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let mut stack = [0u32; STACK_SIZE];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let node = stack[sp] as usize;
+        // Two entries per level at most.
+        let mut stack: ArrayVec<u32, { 2 * STACK_SIZE }> = ArrayVec::new();
+        stack.push(0);
+        while let Some(node) = stack.pop() {
+            let node = node as usize;
             if self.enter::<PARALLEL>(node, ray, t_max).is_none() {
                 continue;
             }
@@ -116,9 +115,8 @@ impl Bvh {
                     }
                 }
             } else {
-                stack[sp] = n.first + 1;
-                stack[sp + 1] = n.first;
-                sp += 2;
+                stack.push(n.first + 1);
+                stack.push(n.first);
             }
         }
         false

@@ -31,7 +31,10 @@ fn finite<E: de::Error>(v: f64) -> Result<f32, E> {
     } else if v.is_nan() {
         Err(E::custom("expected a finite number, found NaN"))
     } else {
-        Err(E::custom(format!("expected a finite number, found {v}")))
+        // A number beyond f32's range: shown in scientific notation, not with 300 digits.
+        Err(E::custom(format!(
+            "expected a finite number (at most about 3.4e38), found {v:e}"
+        )))
     }
 }
 

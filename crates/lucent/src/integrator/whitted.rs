@@ -17,15 +17,23 @@
 //!   outside, `N·I < 0`). On total internal reflection, `kt` joins `kr` on the mirror ray.
 //! - A ray's weight is the product of the `kr` and `kt` factors on its way from the camera; a
 //!   secondary ray is traced only when its weight's largest channel reaches `min_weight`, and
-//!   only up to `max_depth` bounces (camera rays are depth 0).
+//!   only up to `max_depth` bounces (camera rays are depth 0), and at most
+//!   [`MAX_SECONDARY_RAYS`] per camera ray.
 
 use super::RayStats;
 use crate::Rgb;
 use crate::optics::{reflect, refract};
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
-use crate::spawn::spawn_ray;
+use crate::spawn::{Leaving, spawn_ray};
+use glam::Vec3;
 use lucent_accel::Ray;
+
+/// The most secondary rays (reflected and refracted) one camera ray may spawn. Glass facing
+/// glass doubles the ray tree at every bounce, and with `kr + kt ≥ 1` the weight never falls
+/// under `min_weight`; this bound keeps such a pixel from running for hours. Ordinary scenes
+/// use a few dozen.
+pub const MAX_SECONDARY_RAYS: u32 = 1 << 16;
 
 /// Settings of the Whitted integrator.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,22 +53,41 @@ impl Default for Whitted {
     }
 }
 
+/// A ray being traced: where it came from, and what it has left to spend.
+struct Path {
+    depth: u32,
+    /// Product of the `kr`/`kt` factors from the camera.
+    weight: Rgb,
+}
+
 impl Whitted {
     /// Radiance along a camera ray.
     pub fn radiance(&self, scene: &Scene, ray: &Ray, stats: &mut RayStats) -> Rgb {
-        self.trace(scene, ray, 0, Rgb::WHITE, stats)
+        let mut budget = MAX_SECONDARY_RAYS;
+        self.trace(
+            scene,
+            ray,
+            None,
+            &Path {
+                depth: 0,
+                weight: Rgb::WHITE,
+            },
+            &mut budget,
+            stats,
+        )
     }
 
     fn trace(
         &self,
         scene: &Scene,
         ray: &Ray,
-        depth: u32,
-        weight: Rgb,
+        from: Option<Leaving>,
+        path: &Path,
+        budget: &mut u32,
         stats: &mut RayStats,
     ) -> Rgb {
-        match scene.intersect(ray, &mut stats.traversal) {
-            Some(hit) => self.shade(scene, ray, &hit, depth, weight, stats),
+        match scene.intersect_from(ray, from, &mut stats.traversal) {
+            Some(hit) => self.shade(scene, ray, &hit, path, budget, stats),
             None => scene.background,
         }
     }
@@ -70,8 +97,8 @@ impl Whitted {
         scene: &Scene,
         ray: &Ray,
         hit: &SurfaceHit,
-        depth: u32,
-        weight: Rgb,
+        path: &Path,
+        budget: &mut u32,
         stats: &mut RayStats,
     ) -> Rgb {
         let m = &scene.materials[hit.material as usize];
@@ -99,7 +126,7 @@ impl Whitted {
             color += s * l.intensity * (kd * n_dot_l + specular);
         }
 
-        if depth >= self.max_depth {
+        if path.depth >= self.max_depth {
             return color;
         }
         let mut kr = m.kr;
@@ -107,24 +134,37 @@ impl Whitted {
             let mu = if entering { 1.0 / m.ior } else { m.ior };
             match refract(i, n, mu) {
                 Some(t) => {
-                    let w = weight * m.kt;
-                    if w.max_channel() >= self.min_weight {
+                    if let Some(child) = self.child(path, m.kt, budget) {
                         stats.refracted += 1;
-                        let ray = spawn_ray(hit.point, hit.normal, t.normalize());
-                        color += m.kt * self.trace(scene, &ray, depth + 1, w, stats);
+                        let (ray, from) = spawn_ray(hit, t.normalize());
+                        color += m.kt * self.trace(scene, &ray, Some(from), &child, budget, stats);
                     }
                 }
                 // Total internal reflection: the transmitted share is reflected.
                 None => kr += m.kt,
             }
         }
-        let w = weight * kr;
-        if !kr.is_black() && w.max_channel() >= self.min_weight {
+        if !kr.is_black()
+            && let Some(child) = self.child(path, kr, budget)
+        {
             stats.reflected += 1;
-            let ray = spawn_ray(hit.point, hit.normal, reflect(i, n).normalize());
-            color += kr * self.trace(scene, &ray, depth + 1, w, stats);
+            let (ray, from) = spawn_ray(hit, reflect(i, n).normalize());
+            color += kr * self.trace(scene, &ray, Some(from), &child, budget, stats);
         }
         color
+    }
+
+    /// The path of a secondary ray weighted by `k`, if it is worth tracing and the budget allows.
+    fn child(&self, path: &Path, k: Rgb, budget: &mut u32) -> Option<Path> {
+        let weight = path.weight * k;
+        if weight.max_channel() < self.min_weight || *budget == 0 {
+            return None;
+        }
+        *budget -= 1;
+        Some(Path {
+            depth: path.depth + 1,
+            weight,
+        })
     }
 
     /// `S_j`: the share of a light that reaches the hit point, filtered by transmissive blockers.
@@ -132,16 +172,17 @@ impl Whitted {
         &self,
         scene: &Scene,
         hit: &SurfaceHit,
-        to_light: glam::Vec3,
+        to_light: Vec3,
         distance: f32,
         stats: &mut RayStats,
     ) -> Rgb {
         stats.shadow += 1;
-        let ray = spawn_ray(hit.point, hit.normal, to_light);
+        let (ray, from) = spawn_ray(hit, to_light);
         let mut s = Rgb::WHITE;
         scene.occlusion(
             &ray,
             distance,
+            Some(from),
             &mut stats.traversal,
             |material, crossings| {
                 s *= scene.materials[material as usize].kt.powi(crossings as i32);

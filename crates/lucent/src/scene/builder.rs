@@ -1,13 +1,13 @@
 //! Collecting a scene's parts, checking them, and building the accelerators.
 
-use super::{MeshEntry, ObjectTag, Scene};
+use super::{MeshAccel, MeshEntry, ObjectTag, Scene};
 use crate::Rgb;
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, Transform, TriangleTest};
 use glam::Affine3A;
-use lucent_accel::{Aabb, AccelKind};
+use lucent_accel::{Aabb, AccelKind, WideTriangleBvh};
 use std::time::Instant;
 use thiserror::Error;
 
@@ -228,8 +228,14 @@ impl SceneBuilder {
                     .map(|t| mesh.triangle_bounds(t))
                     .collect();
                 let bounds = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(*b));
+                let accel =
+                    if kind == AccelKind::Wide && self.triangle_test == TriangleTest::Watertight {
+                        MeshAccel::Packed(WideTriangleBvh::new(&mesh.positions, &mesh.triangles))
+                    } else {
+                        MeshAccel::Generic(kind.build(&boxes))
+                    };
                 MeshEntry {
-                    accel: kind.build(&boxes),
+                    accel,
                     bounds,
                     mesh,
                 }

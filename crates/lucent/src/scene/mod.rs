@@ -21,7 +21,7 @@ use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, TriangleTest};
-use lucent_accel::{Aabb, AccelKind, AnyAccelerator};
+use lucent_accel::{Aabb, AccelInfo, AccelKind, AnyAccelerator, WideTriangleBvh};
 use std::time::Duration;
 
 /// Which material a shape wears and which scene object it belongs to.
@@ -37,8 +37,33 @@ pub struct ObjectTag {
 #[derive(Clone, Debug)]
 struct MeshEntry {
     mesh: Mesh,
-    accel: AnyAccelerator,
+    accel: MeshAccel,
     bounds: Aabb,
+}
+
+/// The accelerator of one mesh: any structure with a per-triangle leaf test, or the wide BVH
+/// with its triangles stored in SIMD packs (used for the watertight test, whose SIMD version
+/// gives the same hits bit for bit).
+#[derive(Clone, Debug)]
+enum MeshAccel {
+    Generic(AnyAccelerator),
+    Packed(WideTriangleBvh),
+}
+
+impl MeshAccel {
+    fn info(&self) -> AccelInfo {
+        match self {
+            MeshAccel::Generic(a) => a.info(),
+            MeshAccel::Packed(a) => {
+                let (nodes, depth, bytes) = a.info();
+                AccelInfo {
+                    nodes,
+                    depth,
+                    bytes,
+                }
+            }
+        }
+    }
 }
 
 /// A scene ready to render.

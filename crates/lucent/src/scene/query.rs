@@ -1,7 +1,8 @@
 //! Ray queries: the nearest surface, and what blocks a shadow ray.
 
-use super::Scene;
-use crate::shape::{Primitive, SurfaceHit, TriangleHit, triangle};
+use super::{MeshAccel, Scene};
+use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, gamma, triangle};
+use crate::spawn::Leaving;
 use lucent_accel::{Accelerator, Ray, TraversalStats};
 
 /// The nearest hit found so far, before its surface is worked out.
@@ -47,15 +48,64 @@ fn inclusive(t_max: f32) -> f32 {
     }
 }
 
+/// The sphere's hit in `(0, t_max)` for a ray that may be leaving it (see [`crate::spawn`]):
+/// none when leaving outwards, only the far side when leaving inwards.
+#[inline]
+fn sphere_hit(
+    sphere: &crate::shape::Sphere,
+    ray: &Ray,
+    t_max: f32,
+    leaving_it: Option<bool>,
+) -> Option<f32> {
+    match leaving_it {
+        None => sphere.intersect(ray, t_max),
+        Some(true) => None,
+        Some(false) => match sphere.roots(ray) {
+            Roots::Pierce(_, t1) if t1 > 0.0 && t1 < t_max => Some(t1),
+            _ => None,
+        },
+    }
+}
+
+/// Whether `from` leaves sphere `i`, and outwards.
+#[inline]
+fn leaving_sphere(from: Option<Leaving>, i: u32) -> Option<bool> {
+    from.filter(|l| l.surface == SurfaceId::Sphere(i))
+        .map(|l| l.outward)
+}
+
+/// The triangle of instance `k` that `from` leaves, if any.
+#[inline]
+fn leaving_triangle(from: Option<Leaving>, k: u32) -> Option<u32> {
+    match from?.surface {
+        SurfaceId::Triangle { instance, index } if instance == k => Some(index),
+        _ => None,
+    }
+}
+
 impl Scene {
     /// The nearest surface along `ray` (`t > 0`), if any.
     pub fn intersect(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
+        self.intersect_from(ray, None, stats)
+    }
+
+    /// The nearest surface along a ray that leaves surface `from` (made by
+    /// [`crate::spawn::spawn_ray`]), which is left out as the self-intersection policy says.
+    pub fn intersect_from(
+        &self,
+        ray: &Ray,
+        from: Option<Leaving>,
+        stats: &mut TraversalStats,
+    ) -> Option<SurfaceHit> {
         let mut nearest = Nearest {
             t: f32::INFINITY,
             key: None,
             candidate: None,
         };
         for (i, (plane, _)) in self.planes.iter().enumerate() {
+            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32)) {
+                continue;
+            }
             if let Some(t) = plane.intersect(ray, nearest.t) {
                 nearest = Nearest {
                     t,
@@ -64,54 +114,69 @@ impl Scene {
                 };
             }
         }
-        let test = self.triangle_test;
         let mut mesh_stats = TraversalStats::default();
         self.accel.closest_hit(ray, nearest.t, stats, |p, t_max| {
-            match self.primitives[p as usize] {
+            let found = match self.primitives[p as usize] {
                 Primitive::Sphere(i) => {
-                    match self.spheres[i as usize].0.intersect(ray, inclusive(*t_max)) {
-                        Some(t) if nearest.offer(t, (p, 0), Candidate::Sphere(i, t)) => {
-                            *t_max = t;
-                            true
-                        }
-                        _ => false,
+                    let sphere = &self.spheres[i as usize].0;
+                    match sphere_hit(sphere, ray, inclusive(*t_max), leaving_sphere(from, i)) {
+                        Some(t) => nearest.offer(t, (p, 0), Candidate::Sphere(i, t)),
+                        None => false,
                     }
                 }
                 Primitive::Instance(k) => {
-                    let instance = &self.instances[k as usize].0;
-                    let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
-                    let entry = &self.meshes[instance.mesh as usize];
-                    let found =
-                        entry
-                            .accel
-                            .closest_hit(&local, *t_max, &mut mesh_stats, |tri, tm| {
-                                match test.intersect(
-                                    &local,
-                                    entry.mesh.vertices(tri),
-                                    inclusive(*tm),
-                                ) {
-                                    Some(hit)
-                                        if nearest.offer(
-                                            hit.t,
-                                            (p, tri),
-                                            Candidate::Triangle(k, tri, hit),
-                                        ) =>
-                                    {
-                                        *tm = hit.t;
-                                        true
-                                    }
-                                    _ => false,
-                                }
-                            });
-                    if found {
-                        *t_max = nearest.t;
-                    }
-                    found
+                    let skip = leaving_triangle(from, k);
+                    self.nearest_in_instance(p, k, ray, *t_max, skip, &mut nearest, &mut mesh_stats)
                 }
+            };
+            if found {
+                *t_max = nearest.t;
             }
+            found
         });
         *stats += mesh_stats;
         nearest.candidate.map(|c| self.surface(ray, c))
+    }
+
+    /// Offers the hits of instance `k` (top-level primitive `p`) nearer than `t_max` (or tied
+    /// with it) to `nearest`, leaving out triangle `skip`; returns whether one was taken.
+    #[allow(clippy::too_many_arguments)]
+    fn nearest_in_instance(
+        &self,
+        p: u32,
+        k: u32,
+        ray: &Ray,
+        t_max: f32,
+        skip: Option<u32>,
+        nearest: &mut Nearest,
+        stats: &mut TraversalStats,
+    ) -> bool {
+        let instance = &self.instances[k as usize].0;
+        let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
+        let entry = &self.meshes[instance.mesh as usize];
+        match &entry.accel {
+            MeshAccel::Generic(accel) => accel.closest_hit(&local, t_max, stats, |tri, tm| {
+                if skip == Some(tri) {
+                    return false;
+                }
+                let v = entry.mesh.vertices(tri);
+                match self.triangle_test.intersect(&local, v, inclusive(*tm)) {
+                    Some(hit)
+                        if nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit)) =>
+                    {
+                        *tm = hit.t;
+                        true
+                    }
+                    _ => false,
+                }
+            }),
+            MeshAccel::Packed(packed) => match packed.closest_hit(&local, t_max, skip, stats) {
+                Some((tri, hit)) => {
+                    nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit))
+                }
+                None => false,
+            },
+        }
     }
 
     fn surface(&self, ray: &Ray, candidate: Candidate) -> SurfaceHit {
@@ -121,41 +186,47 @@ impl Scene {
                 // Remove the along-normal rounding error of o + t·d.
                 let p = ray.at(t);
                 let point = p - plane.normal * plane.normal.dot(p - plane.point);
-                let texture_coords = plane.surface_coords(point);
                 SurfaceHit {
                     t,
                     point,
                     normal: plane.normal,
-                    texture_coords,
+                    texture_coords: plane.surface_coords(point),
                     material: tag.material,
                     object: tag.object,
+                    surface: SurfaceId::Plane(i),
+                    error: gamma(6) * (point.abs() + plane.point.abs()),
                 }
             }
             Candidate::Sphere(i, t) => {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let point = sphere.project_to_surface(ray.at(t));
-                let normal = sphere.normal_at(point);
                 SurfaceHit {
                     t,
                     point,
-                    normal,
+                    normal: sphere.normal_at(point),
                     texture_coords: point,
                     material: tag.material,
                     object: tag.object,
+                    surface: SurfaceId::Sphere(i),
+                    error: gamma(6) * (sphere.center.abs() + (point - sphere.center).abs()),
                 }
             }
             Candidate::Triangle(k, tri, hit) => {
                 let (instance, tag) = &self.instances[k as usize];
                 let v = self.meshes[instance.mesh as usize].mesh.vertices(tri);
                 let local_point = hit.point(v);
+                let [b0, b1, b2] = hit.bary;
+                let local_error =
+                    gamma(7) * ((b0 * v[0]).abs() + (b1 * v[1]).abs() + (b2 * v[2]).abs());
                 // A triangle that was hit has an area, so its normal exists.
                 let local_normal = triangle::normal(v).unwrap_or(glam::Vec3::Z);
-                let (point, normal) = match instance.transform {
+                let (point, normal, error) = match instance.transform {
                     Some(t) => (
                         t.point_to_world(local_point),
                         t.normal_to_world(local_normal),
+                        t.error_to_world(local_point, local_error),
                     ),
-                    None => (local_point, local_normal),
+                    None => (local_point, local_normal, local_error),
                 };
                 SurfaceHit {
                     t: hit.t,
@@ -164,6 +235,11 @@ impl Scene {
                     texture_coords: point,
                     material: tag.material,
                     object: tag.object,
+                    surface: SurfaceId::Triangle {
+                        instance: k,
+                        index: tri,
+                    },
+                    error,
                 }
             }
         }
@@ -172,42 +248,44 @@ impl Scene {
     /// Walks the surfaces that block `ray` in `(0, t_max)`, calling `blocker(material,
     /// crossings)` for each shape (`crossings`: how many times the segment passes its surface;
     /// each triangle of a mesh counts as a shape of its own) until it returns `true`; returns
-    /// whether it did. No shape is reported twice.
+    /// whether it did. No shape is reported twice; the surface `from` is left out as the
+    /// self-intersection policy says.
     pub fn occlusion<F>(
         &self,
         ray: &Ray,
         t_max: f32,
+        from: Option<Leaving>,
         stats: &mut TraversalStats,
         mut blocker: F,
     ) -> bool
     where
         F: FnMut(u32, u32) -> bool,
     {
-        for (plane, tag) in &self.planes {
+        for (i, (plane, tag)) in self.planes.iter().enumerate() {
+            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32)) {
+                continue;
+            }
             if plane.intersect(ray, t_max).is_some() && blocker(tag.material, 1) {
                 return true;
             }
         }
-        let test = self.triangle_test;
         let mut mesh_stats = TraversalStats::default();
         let blocked =
             self.accel
                 .any_hit(ray, t_max, stats, |p| match self.primitives[p as usize] {
                     Primitive::Sphere(i) => {
                         let (sphere, tag) = &self.spheres[i as usize];
-                        match sphere.crossings(ray, t_max) {
-                            0 => false,
-                            n => blocker(tag.material, n),
-                        }
+                        let crossings = match leaving_sphere(from, i) {
+                            None => sphere.crossings(ray, t_max),
+                            leaving => u32::from(sphere_hit(sphere, ray, t_max, leaving).is_some()),
+                        };
+                        crossings > 0 && blocker(tag.material, crossings)
                     }
                     Primitive::Instance(k) => {
-                        let (instance, tag) = &self.instances[k as usize];
-                        let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
-                        let entry = &self.meshes[instance.mesh as usize];
-                        entry.accel.any_hit(&local, t_max, &mut mesh_stats, |tri| {
-                            test.intersect(&local, entry.mesh.vertices(tri), t_max)
-                                .is_some()
-                                && blocker(tag.material, 1)
+                        let material = self.instances[k as usize].1.material;
+                        let skip = leaving_triangle(from, k);
+                        self.blockers_in_instance(k, ray, t_max, &mut mesh_stats, |tri| {
+                            skip != Some(tri) && blocker(material, 1)
                         })
                     }
                 });
@@ -215,8 +293,35 @@ impl Scene {
         blocked
     }
 
+    /// Calls `blocker(triangle)` for the triangles of instance `k` on `ray` in `(0, t_max)`
+    /// until it returns `true`; returns whether it did.
+    fn blockers_in_instance<F>(
+        &self,
+        k: u32,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        mut blocker: F,
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
+        let instance = &self.instances[k as usize].0;
+        let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
+        let entry = &self.meshes[instance.mesh as usize];
+        match &entry.accel {
+            MeshAccel::Generic(accel) => accel.any_hit(&local, t_max, stats, |tri| {
+                self.triangle_test
+                    .intersect(&local, entry.mesh.vertices(tri), t_max)
+                    .is_some()
+                    && blocker(tri)
+            }),
+            MeshAccel::Packed(packed) => packed.any_hit(&local, t_max, stats, blocker),
+        }
+    }
+
     /// True when anything lies on `ray` in `(0, t_max)`.
     pub fn occluded(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats) -> bool {
-        self.occlusion(ray, t_max, stats, |_, _| true)
+        self.occlusion(ray, t_max, None, stats, |_, _| true)
     }
 }

@@ -60,6 +60,18 @@ impl Transform {
         (self.normal_to_world * n).normalize()
     }
 
+    /// A bound on the world-space error of `point_to_world(p)` when `p` carries the per-axis
+    /// error bound `error`: the error carried through the linear part, plus the rounding of
+    /// the transform itself.
+    pub fn error_to_world(&self, p: Vec3, error: Vec3) -> Vec3 {
+        let m = self.to_world.matrix3;
+        let abs_m = glam::Mat3A::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
+        let carried = Vec3::from(abs_m * glam::Vec3A::from(error));
+        let own = Vec3::from(abs_m * glam::Vec3A::from(p.abs()))
+            + Vec3::from(self.to_world.translation.abs());
+        carried + super::gamma(4) * own
+    }
+
     /// The world box around an object-space box (the box of its eight transformed corners).
     pub fn bounds_to_world(&self, b: Aabb) -> Aabb {
         if b.is_empty() {

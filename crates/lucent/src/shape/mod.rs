@@ -44,4 +44,32 @@ pub struct SurfaceHit {
     pub material: u32,
     /// Index of the scene object hit (stable across runs; for debug views and statistics).
     pub object: u32,
+    /// Which surface was hit: a ray leaving it is not tested against it again (see
+    /// [`crate::spawn`]).
+    pub surface: SurfaceId,
+    /// A bound on the absolute rounding error of `point`, per axis.
+    pub error: Vec3,
+}
+
+/// One surface of the scene, as a ray leaving it must know it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SurfaceId {
+    /// An infinite plane.
+    Plane(u32),
+    /// A sphere.
+    Sphere(u32),
+    /// Triangle `index` of instance `instance`.
+    Triangle {
+        /// The instance.
+        instance: u32,
+        /// The triangle within its mesh.
+        index: u32,
+    },
+}
+
+/// `γ(n) = n·ε / (1 − n·ε)` with `ε = 2⁻²⁴`: the relative error bound of `n` chained roundings
+/// (Higham; as pbrt uses it for hit-point error bounds).
+pub const fn gamma(n: u32) -> f32 {
+    let e = n as f32 * f32::EPSILON * 0.5;
+    e / (1.0 - e)
 }

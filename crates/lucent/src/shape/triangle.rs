@@ -1,5 +1,6 @@
 //! Ray–triangle intersection, two ways: the lecture notes' plane-and-barycentrics method, and
-//! the watertight method of Woop, Benthin and Wald (2013), the default.
+//! the watertight method of Woop, Benthin and Wald (2013), the default. The watertight test
+//! lives in `lucent-accel` (beside its SIMD twin in the wide BVH) and is re-exported here.
 
 use glam::Vec3;
 use lucent_accel::Ray;
@@ -32,22 +33,7 @@ impl TriangleTest {
     }
 }
 
-/// Where a ray meets a triangle `(A, B, C)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TriangleHit {
-    /// Ray parameter of the hit.
-    pub t: f32,
-    /// Barycentric weights `(a1, a2, a3)` of `A`, `B`, `C`: the point is `a1·A + a2·B + a3·C`.
-    pub bary: [f32; 3],
-}
-
-impl TriangleHit {
-    /// The hit point from the barycentric weights: more accurate than `o + t·d`, because it
-    /// does not carry the error of a long ray.
-    pub fn point(&self, [a, b, c]: [Vec3; 3]) -> Vec3 {
-        self.bary[0] * a + self.bary[1] * b + self.bary[2] * c
-    }
-}
+pub use lucent_accel::triangle::{TriangleHit, watertight};
 
 /// The lecture notes' test.
 ///
@@ -83,57 +69,6 @@ pub fn projection(ray: &Ray, [a, b, c]: [Vec3; 3], t_max: f32) -> Option<Triangl
     (inside(a1) && inside(a2) && inside(a3)).then_some(TriangleHit {
         t,
         bary: [a1, a2, a3],
-    })
-}
-
-/// The watertight test of Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013).
-///
-/// The vertices are moved into a frame where the ray starts at the origin and runs along +z
-/// (translate, permute the axes so that z is the direction's largest component, shear), so the
-/// test becomes a 2D edge-function test at the origin. Two triangles sharing an edge evaluate
-/// that edge's function from the same two transformed vertices, so their values are exact
-/// negatives of each other and the ray cannot slip between them; an edge function that rounds
-/// to exactly zero is recomputed in double precision so that the sign is right.
-pub fn watertight(ray: &Ray, [p0, p1, p2]: [Vec3; 3], t_max: f32) -> Option<TriangleHit> {
-    let d = ray.dir;
-    let kz = d.abs().max_position();
-    let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-    if d[kz] < 0.0 {
-        // Keep the frame's handedness, so the sign of the edge functions keeps its meaning.
-        std::mem::swap(&mut kx, &mut ky);
-    }
-    let sz = 1.0 / d[kz];
-    let (sx, sy) = (d[kx] * sz, d[ky] * sz);
-
-    let (a, b, c) = (p0 - ray.origin, p1 - ray.origin, p2 - ray.origin);
-    let (ax, ay) = (a[kx] - sx * a[kz], a[ky] - sy * a[kz]);
-    let (bx, by) = (b[kx] - sx * b[kz], b[ky] - sy * b[kz]);
-    let (cx, cy) = (c[kx] - sx * c[kz], c[ky] - sy * c[kz]);
-
-    let mut u = cx * by - cy * bx;
-    let mut v = ax * cy - ay * cx;
-    let mut w = bx * ay - by * ax;
-    if u == 0.0 || v == 0.0 || w == 0.0 {
-        let e = |px: f32, py: f32, qx: f32, qy: f32| {
-            (f64::from(px) * f64::from(qy) - f64::from(py) * f64::from(qx)) as f32
-        };
-        u = e(cx, cy, bx, by);
-        v = e(ax, ay, cx, cy);
-        w = e(bx, by, ax, ay);
-    }
-    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-        return None;
-    }
-    let det = u + v + w;
-    if det == 0.0 {
-        return None;
-    }
-    let (az, bz, cz) = (sz * a[kz], sz * b[kz], sz * c[kz]);
-    let inv = 1.0 / det;
-    let t = (u * az + v * bz + w * cz) * inv;
-    (t > 0.0 && t < t_max).then_some(TriangleHit {
-        t,
-        bary: [u * inv, v * inv, w * inv],
     })
 }
 

@@ -1,0 +1,201 @@
+//! A 4-wide BVH: each node holds the boxes of up to four children, tested against a ray at
+//! once with SIMD (the `wide` crate's `f32x4`, SSE on x86-64 with a portable fallback).
+//!
+//! Built by collapsing a binary SAH BVH (Wald et al. 2008, "Getting rid of packets"): a node
+//! takes its two children, then repeatedly replaces its interior child of largest surface area
+//! by that child's two children, until it has four. [`WideTriangleBvh`] specialises the leaves
+//! for triangles: they hold packs of four triangles laid out for a SIMD watertight test.
+
+mod collapse;
+mod traverse;
+mod triangles;
+
+pub use triangles::WideTriangleBvh;
+
+use crate::bvh::BuildOptions;
+use crate::{Aabb, Bvh};
+
+/// Children per node.
+pub const WIDTH: usize = 4;
+
+/// `count` of an unused child slot.
+pub(crate) const EMPTY: u32 = u32::MAX;
+
+/// A node: four child boxes in structure-of-arrays form, and what each child is. 128 bytes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct Node4 {
+    /// Smallest corners, `lo[axis][child]`; `+∞` for an unused slot.
+    pub lo: [[f32; WIDTH]; 3],
+    /// Largest corners, `hi[axis][child]`; `−∞` for an unused slot.
+    pub hi: [[f32; WIDTH]; 3],
+    /// Interior child: its node index. Leaf child: its first primitive slot.
+    pub child: [u32; WIDTH],
+    /// 0 for an interior child; the number of primitives of a leaf child; [`EMPTY`] if unused.
+    pub count: [u32; WIDTH],
+}
+
+impl Node4 {
+    /// A node with every slot unused.
+    pub(crate) fn empty() -> Self {
+        Self {
+            lo: [[f32::INFINITY; WIDTH]; 3],
+            hi: [[f32::NEG_INFINITY; WIDTH]; 3],
+            child: [0; WIDTH],
+            count: [EMPTY; WIDTH],
+        }
+    }
+
+    /// Child `i`'s box.
+    pub fn child_bounds(&self, i: usize) -> Aabb {
+        Aabb::new(
+            glam::Vec3::new(self.lo[0][i], self.lo[1][i], self.lo[2][i]),
+            glam::Vec3::new(self.hi[0][i], self.hi[1][i], self.hi[2][i]),
+        )
+    }
+
+    pub(crate) fn set_bounds(&mut self, i: usize, b: Aabb) {
+        for axis in 0..3 {
+            self.lo[axis][i] = b.min[axis];
+            self.hi[axis][i] = b.max[axis];
+        }
+    }
+
+    /// Bit `i` set for every used slot.
+    #[inline]
+    pub fn used_mask(&self) -> u32 {
+        (0..WIDTH)
+            .filter(|&i| self.count[i] != EMPTY)
+            .fold(0, |m, i| m | 1 << i)
+    }
+}
+
+/// A 4-wide BVH over primitive boxes; the leaf test is called per primitive.
+#[derive(Clone, Debug, Default)]
+pub struct WideBvh {
+    pub(crate) nodes: Vec<Node4>,
+    /// Primitive indices in leaf order.
+    pub(crate) prims: Vec<u32>,
+    /// The root, when the whole tree is one leaf: (first slot, count) — otherwise node 0 is the root.
+    pub(crate) root_leaf: Option<(u32, u32)>,
+    pub(crate) bounds: Aabb,
+}
+
+/// The binary build settings that suit a 4-wide tree: small leaves (a leaf's primitives are
+/// tested one by one, or four at a time for triangles).
+pub fn build_options() -> BuildOptions {
+    BuildOptions {
+        max_leaf_size: 4,
+        ..BuildOptions::default()
+    }
+}
+
+impl WideBvh {
+    /// Builds over `boxes`: a binary SAH BVH, collapsed.
+    pub fn new(boxes: &[Aabb]) -> Self {
+        Self::from_binary(&Bvh::build(boxes, &build_options()))
+    }
+
+    /// The nodes; node 0 is the root unless the tree is a single leaf.
+    pub fn nodes(&self) -> &[Node4] {
+        &self.nodes
+    }
+
+    /// Bytes held by nodes and indices.
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.len() * size_of::<Node4>() + self.prims.len() * size_of::<u32>()
+    }
+
+    /// Levels of nodes on the longest root-to-leaf path (a single leaf: 1).
+    pub fn depth(&self) -> usize {
+        fn walk(nodes: &[Node4], i: usize) -> usize {
+            let n = &nodes[i];
+            1 + (0..WIDTH)
+                .filter(|&k| n.count[k] == 0)
+                .map(|k| walk(nodes, n.child[k] as usize))
+                .max()
+                .unwrap_or(0)
+        }
+        if self.nodes.is_empty() {
+            usize::from(self.root_leaf.is_some())
+        } else {
+            walk(&self.nodes, 0)
+        }
+    }
+
+    /// Checks every invariant against the boxes it was built from: each primitive in exactly
+    /// one leaf, each node reached once, children's boxes holding their primitives' boxes,
+    /// unused slots empty and after the used ones.
+    pub fn validate(&self, boxes: &[Aabb]) -> Result<(), String> {
+        let mut seen = vec![false; boxes.len()];
+        let check_leaf =
+            |first: u32, count: u32, b: Aabb, seen: &mut Vec<bool>| -> Result<(), String> {
+                let (first, count) = (first as usize, count as usize);
+                let slots = self
+                    .prims
+                    .get(first..first + count)
+                    .ok_or("a leaf runs past the primitive slots")?;
+                for &p in slots {
+                    let p = p as usize;
+                    if p >= boxes.len() || std::mem::replace(&mut seen[p], true) {
+                        return Err(format!("primitive {p} is missing or in two leaves"));
+                    }
+                    let inner = boxes[p];
+                    let finite =
+                        inner.min.is_finite() && inner.max.is_finite() && !inner.is_empty();
+                    if finite && !(b.min.cmple(inner.min).all() && b.max.cmpge(inner.max).all()) {
+                        return Err(format!("a leaf's box does not contain primitive {p}'s box"));
+                    }
+                }
+                Ok(())
+            };
+        if let Some((first, count)) = self.root_leaf {
+            check_leaf(first, count, self.bounds, &mut seen)?;
+        } else if !self.nodes.is_empty() {
+            let mut reached = vec![false; self.nodes.len()];
+            let mut stack = vec![0usize];
+            while let Some(i) = stack.pop() {
+                if std::mem::replace(&mut reached[i], true) {
+                    return Err(format!("node {i} is reached twice"));
+                }
+                let n = &self.nodes[i];
+                let used = n.used_mask();
+                if used & (used + 1) != 0 || used == 0 {
+                    return Err(format!("node {i}'s used slots are not the first ones"));
+                }
+                for k in 0..WIDTH {
+                    match n.count[k] {
+                        EMPTY => {}
+                        0 => {
+                            let c = n.child[k] as usize;
+                            if c <= i || c >= self.nodes.len() {
+                                return Err(format!("node {i}'s child {c} is out of place"));
+                            }
+                            let cb = n.child_bounds(k);
+                            let child = &self.nodes[c];
+                            for j in 0..WIDTH {
+                                if child.count[j] != EMPTY {
+                                    let g = child.child_bounds(j);
+                                    if !(cb.min.cmple(g.min).all() && cb.max.cmpge(g.max).all()) {
+                                        return Err(format!(
+                                            "node {i}'s box for child {c} does not hold its slot {j}"
+                                        ));
+                                    }
+                                }
+                            }
+                            stack.push(c);
+                        }
+                        count => check_leaf(n.child[k], count, n.child_bounds(k), &mut seen)?,
+                    }
+                }
+            }
+            if let Some(orphan) = reached.iter().position(|r| !r) {
+                return Err(format!("node {orphan} is not reachable"));
+            }
+        }
+        match seen.iter().position(|s| !s) {
+            Some(p) if !boxes[p].has_nan() => Err(format!("primitive {p} is in no leaf")),
+            _ => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,170 @@
+//! `lucent bench`: every accelerator on the same rays, in one run, in one table.
+//!
+//! For each scene and accelerator: build time, nodes, bytes per primitive, and million rays
+//! per second for camera rays (1024×1024), incoherent rays (random origins in the scene's
+//! bounds, random directions) and occlusion segments (random pairs of points in the bounds),
+//! on each requested thread count. The flat structures (brute force, bounding volumes) test
+//! every primitive for every ray, so they trace a subset of each set, sized to about 2^30
+//! primitive tests, and their rate is measured on that subset.
+
+mod rays;
+mod report;
+
+use crate::cli::BenchArgs;
+use anyhow::{Context, bail};
+use lucent::accel::{AccelKind, TraversalStats};
+use lucent::scene::Scene;
+use lucent_scene::{SceneFile, Spanned, bare_mesh_scene};
+use rayon::prelude::*;
+use rays::RaySet;
+use report::{Measurement, Row};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Side of the square image the camera rays cover.
+const CAMERA_SIDE: u32 = 1024;
+
+/// The ray sets, by name.
+const KINDS: [&str; 3] = ["camera", "incoherent", "occlusion"];
+
+/// Runs the benchmark.
+pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
+    let scenes = if args.scenes.is_empty() {
+        default_scenes()?
+    } else {
+        args.scenes.clone()
+    };
+    let kinds: Vec<AccelKind> = if args.accel.is_empty() {
+        AccelKind::ALL.to_vec()
+    } else {
+        args.accel.clone()
+    };
+    let mut rows = Vec::new();
+    for path in &scenes {
+        eprintln!("{}:", path.display());
+        for &kind in &kinds {
+            let scene = load(path, kind)?;
+            let report = scene.accel_report();
+            let mut row = Row::new(path, &scene, report);
+            let sets = [
+                rays::camera_rays(&scene),
+                rays::incoherent_rays(&scene, args.rays, args.seed),
+                rays::occlusion_rays(&scene, args.rays, args.seed),
+            ];
+            let flat = matches!(kind, AccelKind::BruteForce | AccelKind::BoundingVolumes);
+            for (name, set) in KINDS.iter().zip(&sets) {
+                let budget = if flat {
+                    ((1usize << 30) / report.primitives.max(1)).clamp(1024, set.rays.len())
+                } else {
+                    set.rays.len()
+                };
+                for &threads in &args.threads {
+                    let threads = usize::from(threads);
+                    let m = measure(&scene, set, budget, threads, *name == "occlusion")?;
+                    row.measurements.push((name, threads, m));
+                }
+            }
+            eprintln!("  {}", row.summary());
+            rows.push(row);
+        }
+    }
+    let threads: Vec<usize> = args.threads.iter().map(|&t| usize::from(t)).collect();
+    println!("{}", report::table(&rows, &threads));
+    if let Some(csv) = &args.csv {
+        std::fs::write(csv, report::csv(&rows))
+            .with_context(|| format!("cannot write {}", csv.display()))?;
+    }
+    if let Some(json) = &args.json {
+        std::fs::write(json, report::json(&rows))
+            .with_context(|| format!("cannot write {}", json.display()))?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The example scenes and the shared meshes that are here.
+fn default_scenes() -> anyhow::Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for dir in [
+        root.join("examples"),
+        lucent_scene::data_dir().join("meshes"),
+    ] {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        let mut found: Vec<PathBuf> = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|e| e == "toml" || e == "obj"))
+            .collect();
+        found.sort();
+        out.extend(found);
+    }
+    if out.is_empty() {
+        bail!("no scenes given and none found in examples/ or the shared data folder");
+    }
+    Ok(out)
+}
+
+/// A scene (TOML) or bare mesh (OBJ) with accelerator `kind`, its camera at 1024×1024.
+fn load(path: &Path, kind: AccelKind) -> anyhow::Result<Scene> {
+    let is_obj = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    let loaded = if is_obj {
+        bare_mesh_scene(path, CAMERA_SIDE, CAMERA_SIDE, kind)?
+    } else {
+        let mut file = SceneFile::read(path)?;
+        file.desc.image.width = Spanned::new(0..0, CAMERA_SIDE);
+        file.desc.image.height = Spanned::new(0..0, CAMERA_SIDE);
+        file.desc.render.accelerator = Spanned::new(0..0, kind.name().to_string());
+        file.build()?
+    };
+    Ok(loaded.scene)
+}
+
+/// Traces the first `count` rays of `set` on `threads` threads; closest hit, or any hit for
+/// occlusion sets.
+fn measure(
+    scene: &Scene,
+    set: &RaySet,
+    count: usize,
+    threads: usize,
+    occlusion: bool,
+) -> anyhow::Result<Measurement> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
+    let start = Instant::now();
+    let (hits, stats) = pool.install(|| {
+        (0..count)
+            .into_par_iter()
+            .with_min_len(1024)
+            .fold(
+                || (0u64, TraversalStats::default()),
+                |(hits, mut stats), i| {
+                    let ray = &set.rays[i];
+                    let hit = if occlusion {
+                        scene.occluded(ray, set.t_max[i], &mut stats)
+                    } else {
+                        scene.intersect(ray, &mut stats).is_some()
+                    };
+                    (hits + u64::from(hit), stats)
+                },
+            )
+            .reduce(
+                || (0, TraversalStats::default()),
+                |(h1, mut s1), (h2, s2)| {
+                    s1 += s2;
+                    (h1 + h2, s1)
+                },
+            )
+    });
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(Measurement {
+        rays: count as u64,
+        seconds,
+        hits,
+        stats,
+    })
+}
