@@ -1,4 +1,5 @@
-//! The wide BVH's packed triangle leaves give exactly the scalar watertight test's answers.
+//! The wide BVH's packed triangle leaves give exactly the scalar watertight test's answers, on
+//! the AVX2 path and the baseline (SSE) path alike.
 
 use glam::Vec3;
 use lucent_accel::triangle::watertight;
@@ -47,6 +48,9 @@ proptest! {
             let mut stats = TraversalStats::default();
             let want = scalar_nearest(&points, &triangles, &ray, t_max);
             let got = bvh.closest_hit(&ray, t_max, None, &mut stats).map(|(i, h)| (i, h.t, h.bary));
+            // The baseline (SSE) path and the AVX2 path (where the processor has it) agree exactly.
+            let baseline = bvh.closest_hit_baseline(&ray, t_max, None, &mut stats).map(|(i, h)| (i, h.t, h.bary));
+            prop_assert_eq!(got.map(|(i, t, b)| (i, t.to_bits(), b.map(f32::to_bits))), baseline.map(|(i, t, b)| (i, t.to_bits(), b.map(f32::to_bits))));
             match (want, got) {
                 (None, None) => {}
                 (Some((_, wt, _)), Some((gi, gt, gb))) => {
@@ -64,6 +68,10 @@ proptest! {
             let mut blocked = Vec::new();
             bvh.any_hit(&ray, t_max, &mut stats, |i| { blocked.push(i); false });
             blocked.sort_unstable();
+            let mut blocked_baseline = Vec::new();
+            bvh.any_hit_baseline(&ray, t_max, &mut stats, |i| { blocked_baseline.push(i); false });
+            blocked_baseline.sort_unstable();
+            prop_assert_eq!(&blocked, &blocked_baseline);
             let want_blocked: Vec<u32> = (0..triangles.len() as u32)
                 .filter(|&i| watertight(&ray, triangles[i as usize].map(|k| points[k as usize]), t_max).is_some())
                 .collect();

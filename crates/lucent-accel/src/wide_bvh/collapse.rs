@@ -1,10 +1,10 @@
-//! Collapsing a binary BVH into a 4-wide one.
+//! Collapsing a binary BVH into an 8-wide one.
 
-use super::{Node4, WIDTH, WideBvh};
+use super::{NodeW, WIDTH, WideBvh};
 use crate::Bvh;
 
 impl WideBvh {
-    /// The 4-wide tree with the same leaves as `bvh`.
+    /// The 8-wide tree with the same leaves as `bvh`.
     pub fn from_binary(bvh: &Bvh) -> Self {
         let bin = bvh.nodes();
         let prims = bvh.prim_indices().to_vec();
@@ -20,10 +20,10 @@ impl WideBvh {
                 bounds,
             };
         }
-        let mut nodes = vec![Node4::empty()];
+        let mut nodes = vec![NodeW::empty()];
         let mut work = vec![(0usize, 0usize)]; // (binary node, wide node)
         while let Some((b, w)) = work.pop() {
-            // Gather up to four children, opening the largest interior one each time.
+            // Gather up to four children, opening the largest interior one each time (up to eight).
             let first = bin[b].first as usize;
             let mut kids = vec![first, first + 1];
             while kids.len() < WIDTH {
@@ -45,7 +45,7 @@ impl WideBvh {
                     nodes[w].count[slot] = n.count;
                 } else {
                     let child = nodes.len();
-                    nodes.push(Node4::empty());
+                    nodes.push(NodeW::empty());
                     nodes[w].child[slot] = child as u32;
                     nodes[w].count[slot] = 0;
                     work.push((k, child));

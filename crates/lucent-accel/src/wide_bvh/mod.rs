@@ -1,46 +1,49 @@
-//! A 4-wide BVH: each node holds the boxes of up to four children, tested against a ray at
-//! once with SIMD (the `wide` crate's `f32x4`, SSE on x86-64 with a portable fallback).
+//! An 8-wide BVH: each node holds the boxes of up to eight children, tested against a ray at
+//! once with SIMD (AVX2 where the processor has it, see [`simd`]; two SSE steps otherwise).
 //!
 //! Built by collapsing a binary SAH BVH (Wald et al. 2008, "Getting rid of packets"): a node
 //! takes its two children, then repeatedly replaces its interior child of largest surface area
-//! by that child's two children, until it has four. [`WideTriangleBvh`] specialises the leaves
-//! for triangles: they hold packs of four triangles laid out for a SIMD watertight test.
+//! by that child's two children, until it has eight. [`WideTriangleBvh`] specialises the leaves
+//! for triangles: they hold packs of eight triangles laid out for a SIMD watertight test.
 
 mod collapse;
+mod lanes;
+mod simd;
 mod traverse;
 mod triangles;
 
+pub use lanes::{LANES, Lanes};
 pub use triangles::WideTriangleBvh;
 
 use crate::bvh::BuildOptions;
 use crate::{Aabb, Bvh};
 
 /// Children per node.
-pub const WIDTH: usize = 4;
+pub const WIDTH: usize = LANES;
 
 /// `count` of an unused child slot.
 pub(crate) const EMPTY: u32 = u32::MAX;
 
-/// A node: four child boxes in structure-of-arrays form, and what each child is. 128 bytes.
+/// A node: eight child boxes in structure-of-arrays form, and what each child is. 256 bytes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
-pub struct Node4 {
-    /// Smallest corners, `lo[axis][child]`; `+∞` for an unused slot.
-    pub lo: [[f32; WIDTH]; 3],
-    /// Largest corners, `hi[axis][child]`; `−∞` for an unused slot.
-    pub hi: [[f32; WIDTH]; 3],
-    /// Interior child: its node index. Leaf child: its first primitive slot.
+pub struct NodeW {
+    /// The children's slab planes, `planes[k][child]`: `k` = 0, 1, 2 the smallest corner's x,
+    /// y, z (`+∞` for an unused slot), `k` = 3, 4, 5 the largest corner's (`−∞` when unused).
+    pub planes: [Lanes; 6],
+    /// Interior child: its node index. Leaf child: its first primitive slot (or pack).
     pub child: [u32; WIDTH],
-    /// 0 for an interior child; the number of primitives of a leaf child; [`EMPTY`] if unused.
+    /// 0 for an interior child; the number of primitives (or packs) of a leaf child; [`EMPTY`]
+    /// if unused.
     pub count: [u32; WIDTH],
 }
 
-impl Node4 {
+impl NodeW {
     /// A node with every slot unused.
     pub(crate) fn empty() -> Self {
+        let (lo, hi) = (Lanes::splat(f32::INFINITY), Lanes::splat(f32::NEG_INFINITY));
         Self {
-            lo: [[f32::INFINITY; WIDTH]; 3],
-            hi: [[f32::NEG_INFINITY; WIDTH]; 3],
+            planes: [lo, lo, lo, hi, hi, hi],
             child: [0; WIDTH],
             count: [EMPTY; WIDTH],
         }
@@ -48,16 +51,17 @@ impl Node4 {
 
     /// Child `i`'s box.
     pub fn child_bounds(&self, i: usize) -> Aabb {
+        let p = |k: usize| self.planes[k].0[i];
         Aabb::new(
-            glam::Vec3::new(self.lo[0][i], self.lo[1][i], self.lo[2][i]),
-            glam::Vec3::new(self.hi[0][i], self.hi[1][i], self.hi[2][i]),
+            glam::Vec3::new(p(0), p(1), p(2)),
+            glam::Vec3::new(p(3), p(4), p(5)),
         )
     }
 
     pub(crate) fn set_bounds(&mut self, i: usize, b: Aabb) {
         for axis in 0..3 {
-            self.lo[axis][i] = b.min[axis];
-            self.hi[axis][i] = b.max[axis];
+            self.planes[axis].0[i] = b.min[axis];
+            self.planes[3 + axis].0[i] = b.max[axis];
         }
     }
 
@@ -70,10 +74,10 @@ impl Node4 {
     }
 }
 
-/// A 4-wide BVH over primitive boxes; the leaf test is called per primitive.
+/// An 8-wide BVH over primitive boxes; the leaf test is called per primitive.
 #[derive(Clone, Debug, Default)]
 pub struct WideBvh {
-    pub(crate) nodes: Vec<Node4>,
+    pub(crate) nodes: Vec<NodeW>,
     /// Primitive indices in leaf order.
     pub(crate) prims: Vec<u32>,
     /// The root, when the whole tree is one leaf: (first slot, count) — otherwise node 0 is the root.
@@ -81,11 +85,12 @@ pub struct WideBvh {
     pub(crate) bounds: Aabb,
 }
 
-/// The binary build settings that suit a 4-wide tree: small leaves (a leaf's primitives are
-/// tested one by one, or four at a time for triangles).
-pub fn build_options() -> BuildOptions {
+/// The binary build settings for a wide tree whose leaves are tested `block` primitives at a
+/// time: leaves of at most `block` primitives, costed in tests of `block`.
+pub fn build_options(block: usize) -> BuildOptions {
     BuildOptions {
-        max_leaf_size: 4,
+        max_leaf_size: block,
+        block,
         ..BuildOptions::default()
     }
 }
@@ -93,22 +98,22 @@ pub fn build_options() -> BuildOptions {
 impl WideBvh {
     /// Builds over `boxes`: a binary SAH BVH, collapsed.
     pub fn new(boxes: &[Aabb]) -> Self {
-        Self::from_binary(&Bvh::build(boxes, &build_options()))
+        Self::from_binary(&Bvh::build(boxes, &build_options(4)))
     }
 
     /// The nodes; node 0 is the root unless the tree is a single leaf.
-    pub fn nodes(&self) -> &[Node4] {
+    pub fn nodes(&self) -> &[NodeW] {
         &self.nodes
     }
 
     /// Bytes held by nodes and indices.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * size_of::<Node4>() + self.prims.len() * size_of::<u32>()
+        self.nodes.len() * size_of::<NodeW>() + self.prims.len() * size_of::<u32>()
     }
 
     /// Levels of nodes on the longest root-to-leaf path (a single leaf: 1).
     pub fn depth(&self) -> usize {
-        fn walk(nodes: &[Node4], i: usize) -> usize {
+        fn walk(nodes: &[NodeW], i: usize) -> usize {
             let n = &nodes[i];
             1 + (0..WIDTH)
                 .filter(|&k| n.count[k] == 0)

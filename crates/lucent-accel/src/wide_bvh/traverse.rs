@@ -1,96 +1,157 @@
-//! Traversal of the 4-wide BVH: four child boxes per SIMD test, nearest child first.
+//! Traversal of the wide BVH: eight child boxes per SIMD test, nearest child first.
 
-use super::{EMPTY, Node4, WIDTH, WideBvh};
+use super::lanes::Lanes;
+#[cfg(target_arch = "x86_64")]
+use super::simd::Avx;
+use super::simd::{self, Simd, Sse};
+use super::{EMPTY, NodeW, WIDTH, WideBvh};
 use crate::aabb::{CULL_SLACK, ROUNDING_SLACK};
 use crate::{Accelerator, Ray, TraversalStats};
 use arrayvec::ArrayVec;
-use wide::f32x4;
 
-/// Stack entries: each level pushes at most three siblings; the depth is bounded by the binary
-/// tree's (see `BuildOptions::max_sah_depth`).
-const STACK_SIZE: usize = 256;
+/// Stack entries: each level pushes at most seven siblings, and the binary tree's depth is
+/// bounded (`BuildOptions::max_sah_depth` plus log2 of the primitive count), so a wide tree is
+/// at most about 80 levels deep. (An `ArrayVec` is not zeroed on creation, unlike an array.)
+const STACK_SIZE: usize = 7 * 80;
 
-/// A ray prepared for four-box tests.
+/// A ray prepared for eight-box tests.
 pub(crate) struct RayPre {
-    origin: [f32x4; 3],
-    inv_dir: [f32x4; 3],
-    /// Per axis: the direction is negative, so the near plane is the box's `hi`.
-    negative: [bool; 3],
+    origin: [f32; 3],
+    inv_dir: [f32; 3],
+    /// Per axis, the plane row ([`NodeW::planes`]) the ray meets first: the smallest corner's
+    /// when the direction is positive, the largest corner's when it is negative.
+    near: [usize; 3],
+    /// The plane row it meets last.
+    far: [usize; 3],
+    /// A direction component is zero: the slab test can meet `0 · ∞ = NaN`.
+    parallel: bool,
 }
 
 impl RayPre {
     pub(crate) fn new(ray: &Ray) -> Self {
-        let o = ray.origin;
-        let i = ray.inv_dir;
+        let row = |a: usize, negative: bool| if negative { 3 + a } else { a };
+        let neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
         Self {
-            origin: [f32x4::splat(o.x), f32x4::splat(o.y), f32x4::splat(o.z)],
-            inv_dir: [f32x4::splat(i.x), f32x4::splat(i.y), f32x4::splat(i.z)],
-            negative: [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0],
+            origin: ray.origin.to_array(),
+            inv_dir: ray.inv_dir.to_array(),
+            near: [row(0, neg[0]), row(1, neg[1]), row(2, neg[2])],
+            far: [row(0, !neg[0]), row(1, !neg[1]), row(2, !neg[2])],
+            parallel: ray.has_parallel_axis(),
         }
     }
 
     /// Which of the node's children the ray enters before `t_max` (a bit mask), and where.
     ///
-    /// `PARALLEL` is the robust variant for rays with a zero direction component, where the
-    /// slab test can meet `0 · ∞ = NaN` (treated as no constraint, as in [`crate::Aabb::hit`]).
-    /// Otherwise the near and far planes are picked by the direction's signs, and an unused
-    /// slot's inverted box (`lo = +∞`, `hi = −∞`) is never entered.
+    /// The near and far planes are picked by the direction's signs; an unused slot's inverted
+    /// box (`lo = +∞`, `hi = −∞`) is never entered. A ray with a zero direction component takes
+    /// the robust path, where `0 · ∞ = NaN` counts as no constraint (as in [`crate::Aabb::hit`]).
     #[inline(always)]
-    pub(crate) fn enter<const PARALLEL: bool>(
-        &self,
-        node: &Node4,
-        t_max: f32,
-    ) -> (u32, [f32; WIDTH]) {
-        let zero = f32x4::splat(0.0);
-        let (mut near, mut far) = (zero, f32x4::splat(t_max * CULL_SLACK));
-        if PARALLEL {
-            for a in 0..3 {
-                let t0 = (f32x4::from(node.lo[a]) - self.origin[a]) * self.inv_dir[a];
-                let t1 = (f32x4::from(node.hi[a]) - self.origin[a]) * self.inv_dir[a];
-                let nan = t0.is_nan() | t1.is_nan();
-                near = near.max(nan.bitselect(f32x4::splat(f32::NEG_INFINITY), t0.min(t1)));
-                far = far.min(nan.bitselect(
-                    f32x4::splat(f32::INFINITY),
-                    t0.max(t1) * f32x4::splat(ROUNDING_SLACK),
-                ));
-            }
-            let mask = near.simd_le(far).to_bitmask() & node.used_mask();
-            return (mask, near.to_array());
+    pub(crate) fn enter<S: Simd>(&self, s: S, node: &NodeW, t_max: f32) -> (u32, Lanes) {
+        if self.parallel {
+            return self.enter_parallel(node, t_max);
         }
-        let mut exit = f32x4::splat(f32::INFINITY);
+        let t = |row: usize, a: usize| {
+            s.mul(
+                s.sub(s.load(&node.planes[row]), s.splat(self.origin[a])),
+                s.splat(self.inv_dir[a]),
+            )
+        };
+        let near = s.max(
+            s.max(t(self.near[0], 0), t(self.near[1], 1)),
+            s.max(t(self.near[2], 2), s.splat(0.0)),
+        );
+        let exit = s.min(
+            s.min(t(self.far[0], 0), t(self.far[1], 1)),
+            t(self.far[2], 2),
+        );
+        let far = s.min(
+            s.mul(exit, s.splat(ROUNDING_SLACK)),
+            s.splat(t_max * CULL_SLACK),
+        );
+        (s.le(near, far), s.store(near))
+    }
+
+    /// The robust test, lane by lane (rays exactly parallel to an axis are rare).
+    #[cold]
+    fn enter_parallel(&self, node: &NodeW, t_max: f32) -> (u32, Lanes) {
+        let (mut near, mut far) = ([0.0f32; WIDTH], [t_max * CULL_SLACK; WIDTH]);
         for a in 0..3 {
-            let (n, f) = if self.negative[a] {
-                (node.hi[a], node.lo[a])
-            } else {
-                (node.lo[a], node.hi[a])
-            };
-            near = near.fast_max((f32x4::from(n) - self.origin[a]) * self.inv_dir[a]);
-            exit = exit.fast_min((f32x4::from(f) - self.origin[a]) * self.inv_dir[a]);
+            for i in 0..WIDTH {
+                let t0 = (node.planes[a].0[i] - self.origin[a]) * self.inv_dir[a];
+                let t1 = (node.planes[3 + a].0[i] - self.origin[a]) * self.inv_dir[a];
+                if t0.is_nan() || t1.is_nan() {
+                    continue;
+                }
+                near[i] = near[i].max(t0.min(t1));
+                far[i] = far[i].min(t0.max(t1) * ROUNDING_SLACK);
+            }
         }
-        far = far.fast_min(exit * f32x4::splat(ROUNDING_SLACK));
-        (near.simd_le(far).to_bitmask(), near.to_array())
+        let mask = (0..WIDTH)
+            .filter(|&i| near[i] <= far[i])
+            .fold(0, |m, i| m | 1 << i);
+        (mask & node.used_mask(), Lanes(near))
     }
 }
 
 /// A child reference on the traversal stack: (child, count, entry distance).
 type Entry = (u32, u32, f32);
 
+/// What a closest-hit traversal does at a leaf: test primitives (or packs) `first..first +
+/// count`, lower `t_max` on a hit, and say whether there was one. A trait rather than a
+/// closure, so that its `#[inline(always)]` body is compiled into the AVX2 twin of the loop.
+pub(crate) trait ClosestLeaf {
+    fn visit(
+        &mut self,
+        first: u32,
+        count: u32,
+        t_max: &mut f32,
+        stats: &mut TraversalStats,
+    ) -> bool;
+}
+
+/// What an any-hit traversal does at a leaf: return `true` to stop.
+pub(crate) trait AnyLeaf {
+    fn visit(&mut self, first: u32, count: u32, stats: &mut TraversalStats) -> bool;
+}
+
+/// A closure as a leaf visitor.
+pub(crate) struct Visit<F>(pub F);
+
+impl<F: FnMut(u32, u32, &mut f32, &mut TraversalStats) -> bool> ClosestLeaf for Visit<F> {
+    #[inline(always)]
+    fn visit(
+        &mut self,
+        first: u32,
+        count: u32,
+        t_max: &mut f32,
+        stats: &mut TraversalStats,
+    ) -> bool {
+        (self.0)(first, count, t_max, stats)
+    }
+}
+
+impl<F: FnMut(u32, u32, &mut TraversalStats) -> bool> AnyLeaf for Visit<F> {
+    #[inline(always)]
+    fn visit(&mut self, first: u32, count: u32, stats: &mut TraversalStats) -> bool {
+        (self.0)(first, count, stats)
+    }
+}
+
 impl WideBvh {
     /// Closest-hit traversal; `visit(first, count, t_max, stats)` tests a leaf's primitives,
     /// lowers `t_max` on a hit and returns whether it found one.
     #[inline(always)]
-    pub(crate) fn closest_walk<const PARALLEL: bool, F>(
+    pub(crate) fn closest_walk<S: Simd, L: ClosestLeaf>(
         &self,
+        s: S,
         ray: &Ray,
         mut t_max: f32,
         stats: &mut TraversalStats,
-        mut visit: F,
-    ) -> bool
-    where
-        F: FnMut(u32, u32, &mut f32, &mut TraversalStats) -> bool,
-    {
+        leaf: &mut L,
+    ) -> bool {
         if let Some((first, count)) = self.root_leaf {
-            return self.bounds.hit(ray, t_max).is_some() && visit(first, count, &mut t_max, stats);
+            return self.bounds.hit(ray, t_max).is_some()
+                && leaf.visit(first, count, &mut t_max, stats);
         }
         if self.nodes.is_empty() {
             return false;
@@ -99,31 +160,44 @@ impl WideBvh {
         let mut stack: ArrayVec<Entry, STACK_SIZE> = ArrayVec::new();
         let (mut child, mut count) = (0u32, 0u32);
         let mut hit = false;
+        let mut visited = 0u64;
         loop {
             if count == 0 {
-                stats.nodes_visited += 1;
+                visited += 1;
                 let node = &self.nodes[child as usize];
-                let (mut mask, t) = pre.enter::<PARALLEL>(node, t_max);
+                let (mask, t) = pre.enter(s, node, t_max);
                 if mask != 0 {
-                    let mut hits: [Entry; WIDTH] = [(0, 0, 0.0); WIDTH];
-                    let mut n = 0;
-                    while mask != 0 {
-                        let i = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        hits[n] = (node.child[i], node.count[i], t[i]);
-                        n += 1;
+                    let first = mask.trailing_zeros() as usize;
+                    let rest = mask & (mask - 1);
+                    if rest == 0 {
+                        // One child entered: the common case, no sorting.
+                        (child, count) = (node.child[first], node.count[first]);
+                        continue;
                     }
-                    sort_by_distance(&mut hits[..n]);
-                    stack.extend(hits[1..n].iter().rev().copied());
+                    let mut hits: ArrayVec<Entry, WIDTH> = ArrayVec::new();
+                    hits.push((node.child[first], node.count[first], t.0[first]));
+                    let mut m = rest;
+                    while m != 0 {
+                        let i = m.trailing_zeros() as usize;
+                        m &= m - 1;
+                        hits.push((node.child[i], node.count[i], t.0[i]));
+                        if node.count[i] == 0 {
+                            // Visited later: start fetching it now.
+                            simd::prefetch(&self.nodes[node.child[i] as usize]);
+                        }
+                    }
+                    sort_by_distance(&mut hits);
+                    stack.extend(hits[1..].iter().rev().copied());
                     (child, count) = (hits[0].0, hits[0].1);
                     continue;
                 }
             } else {
-                hit |= visit(child, count, &mut t_max, stats);
+                hit |= leaf.visit(child, count, &mut t_max, stats);
             }
             // The next subtree that may still hold a nearer hit (or a tie, see CULL_SLACK).
             loop {
                 let Some((c, k, t)) = stack.pop() else {
+                    stats.nodes_visited += visited;
                     return hit;
                 };
                 if t <= t_max * CULL_SLACK {
@@ -136,18 +210,16 @@ impl WideBvh {
 
     /// Any-hit traversal; `visit(first, count, stats)` returns `true` to stop.
     #[inline(always)]
-    pub(crate) fn any_walk<const PARALLEL: bool, F>(
+    pub(crate) fn any_walk<S: Simd, L: AnyLeaf>(
         &self,
+        s: S,
         ray: &Ray,
         t_max: f32,
         stats: &mut TraversalStats,
-        mut visit: F,
-    ) -> bool
-    where
-        F: FnMut(u32, u32, &mut TraversalStats) -> bool,
-    {
+        leaf: &mut L,
+    ) -> bool {
         if let Some((first, count)) = self.root_leaf {
-            return self.bounds.hit(ray, t_max).is_some() && visit(first, count, stats);
+            return self.bounds.hit(ray, t_max).is_some() && leaf.visit(first, count, stats);
         }
         if self.nodes.is_empty() {
             return false;
@@ -155,31 +227,113 @@ impl WideBvh {
         let pre = RayPre::new(ray);
         let mut stack: ArrayVec<u32, STACK_SIZE> = ArrayVec::new();
         stack.push(0);
-        while let Some(top) = stack.pop() {
-            stats.nodes_visited += 1;
+        let mut visited = 0u64;
+        let mut blocked = false;
+        'walk: while let Some(top) = stack.pop() {
+            visited += 1;
             let node = &self.nodes[top as usize];
-            let (mut mask, _) = pre.enter::<PARALLEL>(node, t_max);
+            let (mut mask, _) = pre.enter(s, node, t_max);
             while mask != 0 {
                 let i = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
                 match node.count[i] {
-                    0 => {
-                        stack.push(node.child[i]);
-                    }
+                    0 => stack.push(node.child[i]),
                     EMPTY => {}
                     count => {
-                        if visit(node.child[i], count, stats) {
-                            return true;
+                        if leaf.visit(node.child[i], count, stats) {
+                            blocked = true;
+                            break 'walk;
                         }
                     }
                 }
             }
         }
-        false
+        stats.nodes_visited += visited;
+        blocked
+    }
+
+    #[inline(always)]
+    fn closest_generic<S: Simd, F>(
+        &self,
+        s: S,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        mut leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32, &mut f32) -> bool,
+    {
+        let mut visit = Visit(
+            |first: u32, count: u32, t_max: &mut f32, stats: &mut TraversalStats| {
+                let mut hit = false;
+                for &p in &self.prims[first as usize..(first + count) as usize] {
+                    stats.primitives_tested += 1;
+                    hit |= leaf(p, t_max);
+                }
+                hit
+            },
+        );
+        self.closest_walk(s, ray, t_max, stats, &mut visit)
+    }
+
+    #[inline(always)]
+    fn any_generic<S: Simd, F>(
+        &self,
+        s: S,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        mut leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
+        let mut visit = Visit(|first: u32, count: u32, stats: &mut TraversalStats| {
+            self.prims[first as usize..(first + count) as usize]
+                .iter()
+                .any(|&p| {
+                    stats.primitives_tested += 1;
+                    leaf(p)
+                })
+        });
+        self.any_walk(s, ray, t_max, stats, &mut visit)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn closest_avx2<F>(
+        &self,
+        s: Avx,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32, &mut f32) -> bool,
+    {
+        self.closest_generic(s, ray, t_max, stats, leaf)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn any_avx2<F>(
+        &self,
+        s: Avx,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
+        self.any_generic(s, ray, t_max, stats, leaf)
     }
 }
 
-/// Insertion sort of at most four entries by entry distance.
+/// Insertion sort of at most eight entries by entry distance.
 #[inline(always)]
 fn sort_by_distance(e: &mut [Entry]) {
     for i in 1..e.len() {
@@ -192,41 +346,29 @@ fn sort_by_distance(e: &mut [Entry]) {
 }
 
 impl Accelerator for WideBvh {
-    fn closest_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, mut leaf: F) -> bool
+    fn closest_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
-        let visit = |first: u32, count: u32, t_max: &mut f32, stats: &mut TraversalStats| {
-            let mut hit = false;
-            for &p in &self.prims[first as usize..(first + count) as usize] {
-                stats.primitives_tested += 1;
-                hit |= leaf(p, t_max);
-            }
-            hit
-        };
-        if ray.has_parallel_axis() {
-            self.closest_walk::<true, _>(ray, t_max, stats, visit)
-        } else {
-            self.closest_walk::<false, _>(ray, t_max, stats, visit)
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = Avx::detect() {
+            // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.closest_avx2(avx, ray, t_max, stats, leaf) };
         }
+        self.closest_generic(Sse, ray, t_max, stats, leaf)
     }
 
-    fn any_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, mut leaf: F) -> bool
+    fn any_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
     where
         F: FnMut(u32) -> bool,
     {
-        let visit = |first: u32, count: u32, stats: &mut TraversalStats| {
-            self.prims[first as usize..(first + count) as usize]
-                .iter()
-                .any(|&p| {
-                    stats.primitives_tested += 1;
-                    leaf(p)
-                })
-        };
-        if ray.has_parallel_axis() {
-            self.any_walk::<true, _>(ray, t_max, stats, visit)
-        } else {
-            self.any_walk::<false, _>(ray, t_max, stats, visit)
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = Avx::detect() {
+            // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf) };
         }
+        self.any_generic(Sse, ray, t_max, stats, leaf)
     }
 }

@@ -7,26 +7,25 @@
 //! every primitive for every ray, so they trace a subset of each set, sized to about 2^30
 //! primitive tests, and their rate is measured on that subset.
 
+#[cfg(any(feature = "bench-embree", feature = "bench-obvhs"))]
+mod peers;
 mod rays;
 mod report;
 
 use crate::cli::BenchArgs;
 use anyhow::{Context, bail};
-use lucent::accel::{AccelKind, TraversalStats};
+use lucent::accel::{AccelKind, TraversalStats, WideTriangleBvh};
 use lucent::scene::Scene;
 use lucent_scene::{SceneFile, Spanned, bare_mesh_scene};
 use rayon::prelude::*;
 use rays::RaySet;
-use report::{Measurement, Row};
+use report::{Measurement, Row, SETS};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 /// Side of the square image the camera rays cover.
 const CAMERA_SIDE: u32 = 1024;
-
-/// The ray sets, by name.
-const KINDS: [&str; 3] = ["camera", "incoherent", "occlusion"];
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
@@ -40,36 +39,62 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
     } else {
         args.accel.clone()
     };
+    let threads: Vec<usize> = args.threads.iter().map(|&t| usize::from(t)).collect();
     let mut rows = Vec::new();
     for path in &scenes {
         eprintln!("{}:", path.display());
+        let name = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        let mut peer_job = None;
         for &kind in &kinds {
             let scene = load(path, kind)?;
             let report = scene.accel_report();
-            let mut row = Row::new(path, &scene, report);
+            let counts = scene.counts();
             let sets = [
                 rays::camera_rays(&scene),
                 rays::incoherent_rays(&scene, args.rays, args.seed),
                 rays::occlusion_rays(&scene, args.rays, args.seed),
             ];
+            let mut row = Row {
+                scene: name.clone(),
+                primitives: counts.triangles + counts.spheres,
+                accel: kind.name().to_string(),
+                build_ms: report.build_time.as_secs_f64() * 1e3,
+                nodes: Some(report.nodes),
+                depth: Some(report.depth),
+                bytes_per_prim: Some(report.bytes as f64 / report.primitives.max(1) as f64),
+                measurements: vec![],
+            };
             let flat = matches!(kind, AccelKind::BruteForce | AccelKind::BoundingVolumes);
-            for (name, set) in KINDS.iter().zip(&sets) {
+            for (name, set) in SETS.iter().zip(&sets) {
                 let budget = if flat {
                     ((1usize << 30) / report.primitives.max(1)).clamp(1024, set.rays.len())
                 } else {
                     set.rays.len()
                 };
-                for &threads in &args.threads {
-                    let threads = usize::from(threads);
-                    let m = measure(&scene, set, budget, threads, *name == "occlusion")?;
-                    row.measurements.push((name, threads, m));
+                for &t in &threads {
+                    let m = measure(&scene, set, budget, t, *name == "occlusion")?;
+                    row.measurements.push((name, t, m));
                 }
             }
             eprintln!("  {}", row.summary());
             rows.push(row);
+            // Peers take a triangle soup: only scenes of meshes alone.
+            if peer_job.is_none()
+                && counts.spheres == 0
+                && counts.planes == 0
+                && counts.triangles > 0
+            {
+                peer_job = Some((scene.world_triangles(), sets));
+            }
         }
+        if let Some((triangles, sets)) = &peer_job {
+            rows.push(kernel_row(&name, triangles, sets, &threads)?);
+        }
+        rows.extend(run_peers(&name, peer_job, &threads)?);
     }
-    let threads: Vec<usize> = args.threads.iter().map(|&t| usize::from(t)).collect();
     println!("{}", report::table(&rows, &threads));
     if let Some(csv) = &args.csv {
         std::fs::write(csv, report::csv(&rows))
@@ -80,6 +105,106 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
             .with_context(|| format!("cannot write {}", json.display()))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The peers' rows for a scene of meshes alone (none when no peer is compiled in).
+#[cfg(any(feature = "bench-embree", feature = "bench-obvhs"))]
+fn run_peers(
+    name: &str,
+    job: Option<(Vec<[glam::Vec3; 3]>, [RaySet; 3])>,
+    threads: &[usize],
+) -> anyhow::Result<Vec<Row>> {
+    match &job {
+        Some((triangles, sets)) => peers::run(&peers::Job {
+            scene: name,
+            triangles,
+            sets,
+            threads,
+        }),
+        None => Ok(vec![]),
+    }
+}
+
+/// The peers' rows: none, since no peer is compiled in (see the `bench-peers` feature).
+#[cfg(not(any(feature = "bench-embree", feature = "bench-obvhs")))]
+fn run_peers(
+    _: &str,
+    _: Option<(Vec<[glam::Vec3; 3]>, [RaySet; 3])>,
+    _: &[usize],
+) -> anyhow::Result<Vec<Row>> {
+    Ok(vec![])
+}
+
+/// The wide BVH's triangle kernel on its own, over the scene's world-space triangles: what the
+/// peers are (a hit or not, no surface worked out), for a like-for-like comparison.
+fn kernel_row(
+    name: &str,
+    triangles: &[[glam::Vec3; 3]],
+    sets: &[RaySet; 3],
+    threads: &[usize],
+) -> anyhow::Result<Row> {
+    let positions: Vec<glam::Vec3> = triangles.iter().flatten().copied().collect();
+    let indices: Vec<[u32; 3]> = (0..triangles.len() as u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
+    let start = std::time::Instant::now();
+    let bvh = WideTriangleBvh::new(&positions, &indices);
+    let build_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (nodes, depth, bytes) = bvh.info();
+    let mut row = Row {
+        scene: name.to_string(),
+        primitives: triangles.len(),
+        accel: report::KERNEL.to_string(),
+        build_ms,
+        nodes: Some(nodes),
+        depth: Some(depth),
+        bytes_per_prim: Some(bytes as f64 / triangles.len().max(1) as f64),
+        measurements: vec![],
+    };
+    for (set_name, set) in SETS.iter().zip(sets) {
+        for &t in threads {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build()?;
+            let occlusion = *set_name == "occlusion";
+            let start = std::time::Instant::now();
+            let (hits, stats) = pool.install(|| {
+                (0..set.rays.len())
+                    .into_par_iter()
+                    .with_min_len(1024)
+                    .fold(
+                        || (0u64, TraversalStats::default()),
+                        |(hits, mut stats), i| {
+                            let (ray, t_max) = (&set.rays[i], set.t_max[i]);
+                            let hit = if occlusion {
+                                bvh.any_hit(ray, t_max, &mut stats, |_| true)
+                            } else {
+                                bvh.closest_hit(ray, t_max, None, &mut stats).is_some()
+                            };
+                            (hits + u64::from(hit), stats)
+                        },
+                    )
+                    .reduce(
+                        || (0, TraversalStats::default()),
+                        |(h1, mut s1), (h2, s2)| {
+                            s1 += s2;
+                            (h1 + h2, s1)
+                        },
+                    )
+            });
+            let seconds = start.elapsed().as_secs_f64();
+            row.measurements.push((
+                set_name,
+                t,
+                Measurement {
+                    rays: set.rays.len() as u64,
+                    seconds,
+                    hits,
+                    stats,
+                },
+            ));
+        }
+    }
+    eprintln!("  {}", row.summary());
+    Ok(row)
 }
 
 /// The example scenes and the shared meshes that are here.

@@ -1,9 +1,8 @@
-//! The benchmark's results: one row per scene and accelerator, as a table, CSV or JSON.
+//! The benchmark's results: one row per scene and structure (ours or a peer's), as a table,
+//! CSV or JSON.
 
-use lucent::accel::{AccelKind, TraversalStats};
-use lucent::scene::{AccelReport, Scene};
+use lucent::accel::TraversalStats;
 use std::fmt::Write;
-use std::path::Path;
 
 /// One timed run over a ray set.
 #[derive(Clone, Copy, Debug)]
@@ -14,7 +13,7 @@ pub struct Measurement {
     pub seconds: f64,
     /// Rays that hit (closest hit) or were blocked (occlusion).
     pub hits: u64,
-    /// Accelerator work.
+    /// Accelerator work (zero for peers, which do not report it).
     pub stats: TraversalStats,
 }
 
@@ -25,43 +24,46 @@ impl Measurement {
     }
 }
 
-/// One scene with one accelerator.
+/// One scene with one structure.
 pub struct Row {
     /// The scene's file name.
     pub scene: String,
-    /// Primitives of the scene: triangles as rendered, plus spheres.
-    pub triangles: usize,
-    /// The accelerator's size and build time.
-    pub accel: AccelReport,
+    /// Primitives of the scene (triangles as rendered, plus spheres).
+    pub primitives: usize,
+    /// The structure: one of ours by its `--accel` name, or a peer's name.
+    pub accel: String,
+    /// Build time in milliseconds.
+    pub build_ms: f64,
+    /// Nodes, depth and bytes per primitive, where known.
+    pub nodes: Option<usize>,
+    /// See `nodes`.
+    pub depth: Option<usize>,
+    /// See `nodes`.
+    pub bytes_per_prim: Option<f64>,
     /// (ray set, threads, result).
     pub measurements: Vec<(&'static str, usize, Measurement)>,
 }
 
-impl Row {
-    /// A row with no measurements yet.
-    pub fn new(path: &Path, scene: &Scene, accel: AccelReport) -> Self {
-        let name = path.file_name().map_or_else(
-            || path.display().to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        );
-        let c = scene.counts();
-        Self {
-            scene: name,
-            triangles: c.triangles + c.spheres,
-            accel,
-            measurements: vec![],
-        }
-    }
+/// The ray sets, by name, in table order.
+pub const SETS: [&str; 3] = ["camera", "incoherent", "occlusion"];
 
-    fn rate(&self, set: &str, threads: usize) -> Option<f64> {
+/// The peers, by row name.
+pub const PEERS: [&str; 2] = ["embree3", "obvhs"];
+
+/// Our structures compared with the peers: the default accelerator through the whole scene
+/// query, and its triangle kernel alone (like for like with the peers' single-ray queries).
+pub const OURS: [&str; 2] = ["wide", KERNEL];
+
+/// The row name of the kernel alone.
+pub const KERNEL: &str = "wide-kernel";
+
+impl Row {
+    /// The rate of a ray set on a thread count.
+    pub fn rate(&self, set: &str, threads: usize) -> Option<f64> {
         self.measurements
             .iter()
             .find(|(s, t, _)| *s == set && *t == threads)
             .map(|(_, _, m)| m.mrays())
-    }
-
-    fn bytes_per_prim(&self) -> f64 {
-        self.accel.bytes as f64 / self.accel.primitives.max(1) as f64
     }
 
     /// One line for the progress log.
@@ -73,62 +75,99 @@ impl Row {
             .collect();
         format!(
             "{:<7} build {:>8.2} ms  {}",
-            self.accel.kind.name(),
-            self.accel.build_time.as_secs_f64() * 1e3,
+            self.accel,
+            self.build_ms,
             rates.join("  ")
         )
     }
 }
 
-/// The results as a text table: rates in million rays per second, and the speed-up over brute
-/// force on the same scene and rays.
+fn opt<T: std::fmt::Display>(v: Option<T>) -> String {
+    v.map_or("-".into(), |v| v.to_string())
+}
+
+/// The results as a text table (rates in million rays per second; the last column is the
+/// speed-up over brute force on incoherent rays), followed by the ratios of our fastest
+/// structure to each peer, where peers were measured.
 pub fn table(rows: &[Row], threads: &[usize]) -> String {
     let mut out = String::new();
-    let sets = ["camera", "incoherent", "occlusion"];
     let mut header = format!(
-        "{:<22} {:>9} {:<7} {:>10} {:>8} {:>6} {:>7}",
+        "{:<22} {:>9} {:<11} {:>10} {:>8} {:>6} {:>7}",
         "scene", "prims", "accel", "build ms", "nodes", "depth", "B/prim"
     );
-    for set in sets {
+    for set in SETS {
         for t in threads {
             let _ = write!(header, " {:>12}", format!("{set} {t}t"));
         }
     }
     let _ = write!(header, " {:>10}", "vs brute");
     let _ = writeln!(out, "{header}");
+    let t_max = threads.iter().copied().max().unwrap_or(1);
     for row in rows {
         let mut line = format!(
-            "{:<22} {:>9} {:<7} {:>10.2} {:>8} {:>6} {:>7.1}",
+            "{:<22} {:>9} {:<11} {:>10.2} {:>8} {:>6} {:>7}",
             truncate(&row.scene, 22),
-            row.triangles,
-            row.accel.kind.name(),
-            row.accel.build_time.as_secs_f64() * 1e3,
-            row.accel.nodes,
-            row.accel.depth,
-            row.bytes_per_prim()
+            row.primitives,
+            row.accel,
+            row.build_ms,
+            opt(row.nodes),
+            opt(row.depth),
+            opt(row.bytes_per_prim.map(|b| format!("{b:.1}")))
         );
-        for set in sets {
+        for set in SETS {
             for &t in threads {
                 let _ = write!(
                     line,
                     " {:>12}",
-                    row.rate(set, t).map_or("-".into(), |r| format!("{r:.3}"))
+                    opt(row.rate(set, t).map(|r| format!("{r:.3}")))
                 );
             }
         }
-        // Speed-up on incoherent rays with the most threads, against brute force on this scene.
-        let t = threads.iter().copied().max().unwrap_or(1);
         let brute = rows
             .iter()
-            .find(|r| r.scene == row.scene && r.accel.kind == AccelKind::BruteForce);
+            .find(|r| r.scene == row.scene && r.accel == "brute");
         let speedup =
-            brute.and_then(|b| Some(row.rate("incoherent", t)? / b.rate("incoherent", t)?));
-        let _ = write!(
-            line,
-            " {:>10}",
-            speedup.map_or("-".into(), |s| format!("{s:.1}×"))
-        );
+            brute.and_then(|b| Some(row.rate("incoherent", t_max)? / b.rate("incoherent", t_max)?));
+        let _ = write!(line, " {:>10}", opt(speedup.map(|s| format!("{s:.1}×"))));
         let _ = writeln!(out, "{line}");
+    }
+    let ratios = peer_ratios(rows, threads);
+    if !ratios.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nratios to each peer (above 1: lucent is faster), same rays, same run:"
+        );
+        out.push_str(&ratios);
+    }
+    out
+}
+
+fn peer_ratios(rows: &[Row], threads: &[usize]) -> String {
+    let mut out = String::new();
+    for ours in rows.iter().filter(|r| OURS.contains(&r.accel.as_str())) {
+        for peer in rows
+            .iter()
+            .filter(|r| r.scene == ours.scene && PEERS.contains(&r.accel.as_str()))
+        {
+            let mut line = format!(
+                "{:<22} {:<11} vs {:<8} build {:>6.2}×",
+                truncate(&ours.scene, 22),
+                ours.accel,
+                peer.accel,
+                peer.build_ms / ours.build_ms.max(1e-9)
+            );
+            for set in SETS {
+                for &t in threads {
+                    let ratio = ours.rate(set, t).zip(peer.rate(set, t)).map(|(a, b)| a / b);
+                    let _ = write!(
+                        line,
+                        "  {set} {t}t {}",
+                        opt(ratio.map(|r| format!("{r:.2}×")))
+                    );
+                }
+            }
+            let _ = writeln!(out, "{line}");
+        }
     }
     out
 }
@@ -141,23 +180,24 @@ fn truncate(s: &str, n: usize) -> String {
     }
 }
 
-/// One CSV line per scene, accelerator, ray set and thread count.
+const CSV_HEADER: &str = "scene,primitives,accel,build_ms,nodes,depth,bytes_per_prim,rays_kind,threads,rays,seconds,mrays_per_s,hits,nodes_visited,primitives_tested";
+
+/// One CSV line per scene, structure, ray set and thread count.
 pub fn csv(rows: &[Row]) -> String {
-    let mut out = String::from(
-        "scene,primitives,accel,build_ms,nodes,depth,bytes_per_prim,rays_kind,threads,rays,seconds,mrays_per_s,hits,nodes_visited,primitives_tested\n",
-    );
+    let mut out = format!("{CSV_HEADER}\n");
     for r in rows {
         for (set, threads, m) in &r.measurements {
             let _ = writeln!(
                 out,
-                "{},{},{},{:.3},{},{},{:.2},{set},{threads},{},{:.6},{:.4},{},{},{}",
+                "{},{},{},{:.3},{},{},{},{set},{threads},{},{:.6},{:.4},{},{},{}",
                 r.scene,
-                r.triangles,
-                r.accel.kind.name(),
-                r.accel.build_time.as_secs_f64() * 1e3,
-                r.accel.nodes,
-                r.accel.depth,
-                r.bytes_per_prim(),
+                r.primitives,
+                r.accel,
+                r.build_ms,
+                r.nodes.map_or(String::new(), |n| n.to_string()),
+                r.depth.map_or(String::new(), |n| n.to_string()),
+                r.bytes_per_prim
+                    .map_or(String::new(), |b| format!("{b:.2}")),
                 m.rays,
                 m.seconds,
                 m.mrays(),
@@ -172,18 +212,19 @@ pub fn csv(rows: &[Row]) -> String {
 
 /// The same records as [`csv`], as a JSON array of objects.
 pub fn json(rows: &[Row]) -> String {
+    let num = |v: Option<String>| v.unwrap_or_else(|| "null".into());
     let mut items = Vec::new();
     for r in rows {
         for (set, threads, m) in &r.measurements {
             items.push(format!(
-                "{{\"scene\":{:?},\"primitives\":{},\"accel\":\"{}\",\"build_ms\":{:.3},\"nodes\":{},\"depth\":{},\"bytes_per_prim\":{:.2},\"rays_kind\":\"{set}\",\"threads\":{threads},\"rays\":{},\"seconds\":{:.6},\"mrays_per_s\":{:.4},\"hits\":{},\"nodes_visited\":{},\"primitives_tested\":{}}}",
+                "{{\"scene\":{:?},\"primitives\":{},\"accel\":{:?},\"build_ms\":{:.3},\"nodes\":{},\"depth\":{},\"bytes_per_prim\":{},\"rays_kind\":\"{set}\",\"threads\":{threads},\"rays\":{},\"seconds\":{:.6},\"mrays_per_s\":{:.4},\"hits\":{},\"nodes_visited\":{},\"primitives_tested\":{}}}",
                 r.scene,
-                r.triangles,
-                r.accel.kind.name(),
-                r.accel.build_time.as_secs_f64() * 1e3,
-                r.accel.nodes,
-                r.accel.depth,
-                r.bytes_per_prim(),
+                r.primitives,
+                r.accel,
+                r.build_ms,
+                num(r.nodes.map(|n| n.to_string())),
+                num(r.depth.map(|n| n.to_string())),
+                num(r.bytes_per_prim.map(|b| format!("{b:.2}"))),
                 m.rays,
                 m.seconds,
                 m.mrays(),

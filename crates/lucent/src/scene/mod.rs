@@ -182,6 +182,23 @@ impl Scene {
         }
     }
 
+    /// Every triangle of every instance, in world space (for comparisons with other ray
+    /// tracers, which take a triangle soup).
+    pub fn world_triangles(&self) -> Vec<[glam::Vec3; 3]> {
+        let mut out = Vec::with_capacity(self.counts().triangles);
+        for (instance, _) in &self.instances {
+            let mesh = &self.meshes[instance.mesh as usize].mesh;
+            for t in 0..mesh.triangles.len() as u32 {
+                let v = mesh.vertices(t);
+                out.push(match instance.transform {
+                    Some(tr) => v.map(|p| tr.point_to_world(p)),
+                    None => v,
+                });
+            }
+        }
+        out
+    }
+
     /// The ray–triangle test in use.
     pub fn triangle_test(&self) -> TriangleTest {
         self.triangle_test
