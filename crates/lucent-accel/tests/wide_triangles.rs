@@ -47,9 +47,12 @@ proptest! {
             let ray = Ray::new(origin, dir.normalize());
             let mut stats = TraversalStats::default();
             let want = scalar_nearest(&points, &triangles, &ray, t_max);
-            let got = bvh.closest_hit(&ray, t_max, None, &mut stats).map(|(i, h)| (i, h.t, h.bary));
+            let got = bvh.closest_hit(&ray, t_max, None, &mut stats).map(|(i, h, v)| {
+                assert_eq!(v, triangles[i as usize].map(|k| points[k as usize]), "the packed hit's vertices");
+                (i, h.t, h.bary)
+            });
             // The baseline (SSE) path and the AVX2 path (where the processor has it) agree exactly.
-            let baseline = bvh.closest_hit_baseline(&ray, t_max, None, &mut stats).map(|(i, h)| (i, h.t, h.bary));
+            let baseline = bvh.closest_hit_baseline(&ray, t_max, None, &mut stats).map(|(i, h, _)| (i, h.t, h.bary));
             prop_assert_eq!(got.map(|(i, t, b)| (i, t.to_bits(), b.map(f32::to_bits))), baseline.map(|(i, t, b)| (i, t.to_bits(), b.map(f32::to_bits))));
             match (want, got) {
                 (None, None) => {}

@@ -2,19 +2,26 @@
 //! hierarchies"): at each node, primitive centroids are dropped into bins along each axis, and
 //! the split between bins with the lowest surface-area cost is taken; a node becomes a leaf
 //! when no split is cheaper than testing all its primitives.
+//!
+//! One pass over a node's primitives fills the bins of all three axes; each bin keeps the box
+//! of its primitives and of their centroids, so the children's boxes come out of the bins and
+//! the primitives are read once more only to partition them.
 
 use super::{Bvh, Node};
 use crate::Aabb;
-use glam::Vec3;
+use glam::Vec3A;
+
+/// Most bins per axis.
+pub const MAX_BINS: usize = 32;
 
 /// Settings of the build.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BuildOptions {
-    /// Bins per axis.
+    /// Bins per axis (2 to [`MAX_BINS`]).
     pub bins: usize,
     /// Cost of visiting a node relative to testing one block of primitives.
     pub traversal_cost: f32,
-    /// Primitives tested together (4 for SIMD triangle packs): a leaf of `n` primitives costs
+    /// Primitives tested together (8 for SIMD triangle packs): a leaf of `n` primitives costs
     /// `⌈n / block⌉` tests, so the SAH does not split what one test handles anyway.
     pub block: usize,
     /// Leaves never hold more than this many primitives (unless they all share one centroid).
@@ -36,18 +43,95 @@ impl Default for BuildOptions {
     }
 }
 
-/// A split: the axis and the first bin on the right.
+/// A box in SIMD registers, for the builder's inner loops.
 #[derive(Clone, Copy)]
+struct Box3 {
+    lo: Vec3A,
+    hi: Vec3A,
+}
+
+impl Box3 {
+    const EMPTY: Box3 = Box3 {
+        lo: Vec3A::INFINITY,
+        hi: Vec3A::NEG_INFINITY,
+    };
+
+    #[inline(always)]
+    fn union(self, o: Box3) -> Box3 {
+        Box3 {
+            lo: self.lo.min(o.lo),
+            hi: self.hi.max(o.hi),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: Vec3A) -> Box3 {
+        Box3 {
+            lo: self.lo.min(p),
+            hi: self.hi.max(p),
+        }
+    }
+
+    fn area(self) -> f32 {
+        if self.lo.cmpgt(self.hi).any() {
+            return 0.0;
+        }
+        let e = self.hi - self.lo;
+        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+    }
+
+    fn aabb(self) -> Aabb {
+        Aabb::new(self.lo.into(), self.hi.into())
+    }
+}
+
+/// A primitive as the builder moves it around: its box, centre and index, kept together so
+/// that each pass reads memory in order.
+#[derive(Clone, Copy)]
+struct Ref {
+    bounds: Box3,
+    center: Vec3A,
+    index: u32,
+}
+
+/// A bin: how many primitives fell in, the box of their boxes and the box of their centroids.
+#[derive(Clone, Copy)]
+struct Bin {
+    count: u32,
+    bounds: Box3,
+    centroids: Box3,
+}
+
+const EMPTY_BIN: Bin = Bin {
+    count: 0,
+    bounds: Box3::EMPTY,
+    centroids: Box3::EMPTY,
+};
+
+/// A node waiting to be built: its range of primitives and what is known of them.
+struct Work {
+    node: usize,
+    start: usize,
+    end: usize,
+    depth: usize,
+    bounds: Box3,
+    centroids: Box3,
+}
+
+/// A chosen split: the axis, the first bin on the right, and the children's boxes.
 struct Split {
     axis: usize,
     bin: usize,
     cost: f32,
+    left: (Box3, Box3),
+    right: (Box3, Box3),
 }
 
-struct Builder<'a> {
-    boxes: &'a [Aabb],
-    centroids: Vec<Vec3>,
-    prims: Vec<u32>,
+/// A split position with the two halves' boxes.
+type Halves = (usize, (Box3, Box3), (Box3, Box3));
+
+struct Builder {
+    refs: Vec<Ref>,
     nodes: Vec<Node>,
     options: BuildOptions,
 }
@@ -58,40 +142,76 @@ impl Bvh {
         if boxes.is_empty() {
             return Self::default();
         }
-        // A NaN box belongs to a primitive no ray can hit: it must not spoil the unions.
-        let boxes: Vec<Aabb> = boxes.iter().map(|b| b.or_empty_if_nan()).collect();
-        let centroids = boxes
+        let refs = boxes
             .iter()
-            .map(|b| {
-                let c = b.center();
+            .enumerate()
+            .map(|(i, b)| {
+                // A NaN box belongs to a primitive no ray can hit: it must not spoil the unions.
+                let b = b.or_empty_if_nan();
+                let bounds = Box3 {
+                    lo: b.min.into(),
+                    hi: b.max.into(),
+                };
                 // An empty or infinite box has no usable centre; any bin will do.
-                if c.is_finite() { c } else { Vec3::ZERO }
+                let c = b.center();
+                let center = if c.is_finite() { c.into() } else { Vec3A::ZERO };
+                Ref {
+                    bounds,
+                    center,
+                    index: i as u32,
+                }
             })
             .collect();
-        let mut b = Builder {
-            boxes: &boxes,
-            centroids,
-            prims: (0..boxes.len() as u32).collect(),
-            nodes: Vec::with_capacity(2 * boxes.len() / options.max_leaf_size.max(1) + 1),
-            options: *options,
+        let options = BuildOptions {
+            bins: options.bins.clamp(2, MAX_BINS),
+            ..*options
         };
+        let mut b = Builder {
+            refs,
+            nodes: Vec::with_capacity(2 * boxes.len() / options.max_leaf_size.max(1) + 1),
+            options,
+        };
+        let (bounds, centroids) = b.range_bounds(0, boxes.len());
         b.nodes.push(empty_node());
-        // Work list of (node, start, end, depth): iterative, so deep trees cannot overflow the stack.
-        let mut work = vec![(0usize, 0usize, boxes.len(), 0usize)];
-        while let Some((node, start, end, depth)) = work.pop() {
-            if let Some(mid) = b.split_node(node, start, end, depth) {
-                let left = b.nodes.len();
+        // Iterative, so that deep trees cannot overflow the call stack.
+        let mut work = vec![Work {
+            node: 0,
+            start: 0,
+            end: boxes.len(),
+            depth: 0,
+            bounds,
+            centroids,
+        }];
+        while let Some(w) = work.pop() {
+            if let Some((mid, left, right)) = b.split_node(&w) {
+                let first = b.nodes.len();
                 b.nodes.push(empty_node());
                 b.nodes.push(empty_node());
-                b.nodes[node].first = left as u32;
-                b.nodes[node].count = 0;
-                work.push((left + 1, mid, end, depth + 1));
-                work.push((left, start, mid, depth + 1));
+                b.nodes[w.node].first = first as u32;
+                b.nodes[w.node].count = 0;
+                let depth = w.depth + 1;
+                work.push(Work {
+                    node: first + 1,
+                    start: mid,
+                    end: w.end,
+                    depth,
+                    bounds: right.0,
+                    centroids: right.1,
+                });
+                work.push(Work {
+                    node: first,
+                    start: w.start,
+                    end: mid,
+                    depth,
+                    bounds: left.0,
+                    centroids: left.1,
+                });
             }
         }
+        let prims = b.refs.iter().map(|r| r.index).collect();
         Self {
             nodes: b.nodes,
-            prims: b.prims,
+            prims,
         }
     }
 }
@@ -105,49 +225,50 @@ fn empty_node() -> Node {
     }
 }
 
-impl Builder<'_> {
+impl Builder {
+    /// The box of the boxes, and of the centroids, of `refs[start..end]`.
+    fn range_bounds(&self, start: usize, end: usize) -> (Box3, Box3) {
+        self.refs[start..end]
+            .iter()
+            .fold((Box3::EMPTY, Box3::EMPTY), |(b, c), r| {
+                (b.union(r.bounds), c.grow(r.center))
+            })
+    }
+
     /// Sets the node's box; makes it a leaf and returns `None`, or partitions its primitives and
-    /// returns where the right half starts.
-    fn split_node(&mut self, node: usize, start: usize, end: usize, depth: usize) -> Option<usize> {
-        let range = &self.prims[start..end];
-        let bounds = range
-            .iter()
-            .fold(Aabb::EMPTY, |b, &p| b.union(self.boxes[p as usize]));
-        let centroid_bounds = range
-            .iter()
-            .fold(Aabb::EMPTY, |b, &p| b.grow(self.centroids[p as usize]));
-        let n = &mut self.nodes[node];
+    /// returns where the right half starts, with each half's box and centroid box.
+    fn split_node(&mut self, w: &Work) -> Option<Halves> {
+        let bounds = w.bounds.aabb();
+        let n = &mut self.nodes[w.node];
         n.min = bounds.min.to_array();
         n.max = bounds.max.to_array();
-        n.first = start as u32;
-        n.count = (end - start) as u32;
+        n.first = w.start as u32;
+        n.count = (w.end - w.start) as u32;
 
-        let count = end - start;
+        let count = w.end - w.start;
         if count <= 1 {
             return None;
         }
-        let extent = centroid_bounds.extent();
+        let extent = w.centroids.hi - w.centroids.lo;
+        let too_big = count > self.options.max_leaf_size;
         if extent.max_element() <= 0.0 {
             // All centroids coincide: no plane separates them. Split the list in halves only
             // when the leaf would be too large.
-            return (count > self.options.max_leaf_size).then_some(start + count / 2);
+            return too_big.then(|| self.halves(w.start, w.end, w.start + count / 2));
         }
-        if depth >= self.options.max_sah_depth {
-            return Some(self.median_split(start, end, extent.max_position()));
+        if w.depth >= self.options.max_sah_depth {
+            return Some(self.median_split(w.start, w.end, extent.max_position()));
         }
-        let best = self.best_split(start, end, bounds, centroid_bounds);
-        let leaf_cost = self.blocks(count as u32);
-        let too_big = count > self.options.max_leaf_size;
-        match best {
-            Some(split) if split.cost < leaf_cost || too_big => {
-                let mid = self.partition(start, end, split, centroid_bounds);
-                if mid == start || mid == end {
-                    Some(self.median_split(start, end, extent.max_position()))
+        match self.best_split(w) {
+            Some(split) if split.cost < self.blocks(count as u32) || too_big => {
+                let mid = self.partition(w.start, w.end, split.axis, split.bin, w.centroids);
+                if mid == w.start || mid == w.end {
+                    Some(self.median_split(w.start, w.end, extent.max_position()))
                 } else {
-                    Some(mid)
+                    Some((mid, split.left, split.right))
                 }
             }
-            None if too_big => Some(self.median_split(start, end, extent.max_position())),
+            None if too_big => Some(self.median_split(w.start, w.end, extent.max_position())),
             _ => None,
         }
     }
@@ -157,81 +278,125 @@ impl Builder<'_> {
         n.div_ceil(self.options.block.max(1) as u32) as f32
     }
 
-    fn bin_of(&self, c: Vec3, axis: usize, cb: Aabb) -> usize {
-        let bins = self.options.bins;
-        let extent = cb.max[axis] - cb.min[axis];
-        let k = ((c[axis] - cb.min[axis]) * (bins as f32 / extent)) as usize; // NaN and negatives cast to 0
-        k.min(bins - 1)
+    /// The bins per axis of centroids `c` in a node whose centroids start at `lo`, with
+    /// `scale = bins / extent` (0 along a flat axis).
+    #[inline(always)]
+    fn bins_of(&self, c: Vec3A, lo: Vec3A, scale: Vec3A) -> [usize; 3] {
+        // NaN and negatives cast to 0; the top edge would be `bins`, hence the `min`.
+        let k = ((c - lo) * scale).to_array();
+        let top = self.options.bins - 1;
+        [
+            (k[0] as usize).min(top),
+            (k[1] as usize).min(top),
+            (k[2] as usize).min(top),
+        ]
+    }
+
+    fn scale(&self, centroids: Box3) -> Vec3A {
+        let e = centroids.hi - centroids.lo;
+        let nb = self.options.bins as f32;
+        Vec3A::select(e.cmpgt(Vec3A::ZERO), Vec3A::splat(nb) / e, Vec3A::ZERO)
     }
 
     /// The cheapest split over all axes and bin boundaries, by the SAH:
-    /// `cost = traversal + (area(L)·|L| + area(R)·|R|) / area(node)`, in units of one primitive test.
-    fn best_split(&self, start: usize, end: usize, bounds: Aabb, cb: Aabb) -> Option<Split> {
-        let bins = self.options.bins;
-        let parent_area = bounds.surface_area();
+    /// `cost = traversal + (area(L)·tests(L) + area(R)·tests(R)) / area(node)`, in units of one test.
+    fn best_split(&self, w: &Work) -> Option<Split> {
+        let nb = self.options.bins;
+        let (lo, scale) = (w.centroids.lo, self.scale(w.centroids));
+        let mut bins = [[EMPTY_BIN; MAX_BINS]; 3];
+        for r in &self.refs[w.start..w.end] {
+            let k = self.bins_of(r.center, lo, scale);
+            for axis in 0..3 {
+                let bin = &mut bins[axis][k[axis]];
+                bin.count += 1;
+                bin.bounds = bin.bounds.union(r.bounds);
+                bin.centroids = bin.centroids.grow(r.center);
+            }
+        }
+        let parent_area = w.bounds.area().max(f32::MIN_POSITIVE);
         let mut best: Option<Split> = None;
-        let mut bin_boxes = vec![Aabb::EMPTY; bins];
-        let mut bin_counts = vec![0u32; bins];
-        let mut right_area = vec![0.0f32; bins];
-        for axis in 0..3 {
-            if cb.max[axis] - cb.min[axis] <= 0.0 {
+        for (axis, bins) in bins.iter().enumerate() {
+            if scale[axis] == 0.0 {
                 continue;
             }
-            bin_boxes.fill(Aabb::EMPTY);
-            bin_counts.fill(0);
-            for &p in &self.prims[start..end] {
-                let k = self.bin_of(self.centroids[p as usize], axis, cb);
-                bin_boxes[k] = bin_boxes[k].union(self.boxes[p as usize]);
-                bin_counts[k] += 1;
+            // Right-hand sums: `right[k]` covers bins `k..`.
+            let mut right = [EMPTY_BIN; MAX_BINS];
+            let mut acc = EMPTY_BIN;
+            for k in (1..nb).rev() {
+                acc = merge(acc, bins[k]);
+                right[k] = acc;
             }
-            // Sweep from the right: right_area[k] is the area of bins k.. (k ≥ 1).
-            let mut acc = Aabb::EMPTY;
-            for k in (1..bins).rev() {
-                acc = acc.union(bin_boxes[k]);
-                right_area[k] = acc.surface_area();
-            }
-            let (mut left_box, mut left_count) = (Aabb::EMPTY, 0u32);
-            let total = (end - start) as u32;
-            for k in 1..bins {
-                left_box = left_box.union(bin_boxes[k - 1]);
-                left_count += bin_counts[k - 1];
-                let right_count = total - left_count;
-                if left_count == 0 || right_count == 0 {
+            let mut left = EMPTY_BIN;
+            for k in 1..nb {
+                left = merge(left, bins[k - 1]);
+                let r = right[k];
+                if left.count == 0 || r.count == 0 {
                     continue;
                 }
                 let cost = self.options.traversal_cost
-                    + (left_box.surface_area() * self.blocks(left_count)
-                        + right_area[k] * self.blocks(right_count))
-                        / parent_area.max(f32::MIN_POSITIVE);
-                if best.is_none_or(|b| cost < b.cost) {
-                    best = Some(Split { axis, bin: k, cost });
+                    + (left.bounds.area() * self.blocks(left.count)
+                        + r.bounds.area() * self.blocks(r.count))
+                        / parent_area;
+                if best.as_ref().is_none_or(|b| cost < b.cost) {
+                    best = Some(Split {
+                        axis,
+                        bin: k,
+                        cost,
+                        left: (left.bounds, left.centroids),
+                        right: (r.bounds, r.centroids),
+                    });
                 }
             }
         }
         best
     }
 
-    /// Moves the primitives left of the split to the front; returns where the rest starts.
-    fn partition(&mut self, start: usize, end: usize, split: Split, cb: Aabb) -> usize {
+    /// Moves the primitives whose centroid falls left of bin `bin` along `axis` to the front;
+    /// returns where the rest starts.
+    fn partition(
+        &mut self,
+        start: usize,
+        end: usize,
+        axis: usize,
+        bin: usize,
+        centroids: Box3,
+    ) -> usize {
+        let (lo, scale) = (centroids.lo, self.scale(centroids));
         let (mut i, mut j) = (start, end);
         while i < j {
-            if self.bin_of(self.centroids[self.prims[i] as usize], split.axis, cb) < split.bin {
+            if self.bins_of(self.refs[i].center, lo, scale)[axis] < bin {
                 i += 1;
             } else {
                 j -= 1;
-                self.prims.swap(i, j);
+                self.refs.swap(i, j);
             }
         }
         i
     }
 
     /// Splits at the median centroid along `axis`.
-    fn median_split(&mut self, start: usize, end: usize, axis: usize) -> usize {
+    fn median_split(&mut self, start: usize, end: usize, axis: usize) -> Halves {
         let mid = start + (end - start) / 2;
-        let centroids = &self.centroids;
-        self.prims[start..end].select_nth_unstable_by(mid - start, |&a, &b| {
-            centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis])
+        self.refs[start..end].select_nth_unstable_by(mid - start, |a, b| {
+            a.center[axis].total_cmp(&b.center[axis])
         });
-        mid
+        self.halves(start, end, mid)
+    }
+
+    /// `mid` with the boxes of the two halves.
+    fn halves(&self, start: usize, end: usize, mid: usize) -> Halves {
+        (
+            mid,
+            self.range_bounds(start, mid),
+            self.range_bounds(mid, end),
+        )
+    }
+}
+
+fn merge(a: Bin, b: Bin) -> Bin {
+    Bin {
+        count: a.count + b.count,
+        bounds: a.bounds.union(b.bounds),
+        centroids: a.centroids.union(b.centroids),
     }
 }

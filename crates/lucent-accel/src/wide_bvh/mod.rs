@@ -13,7 +13,7 @@ mod traverse;
 mod triangles;
 
 pub use lanes::{LANES, Lanes};
-pub use triangles::WideTriangleBvh;
+pub use triangles::{PackedHit, WideTriangleBvh};
 
 use crate::bvh::BuildOptions;
 use crate::{Aabb, Bvh};

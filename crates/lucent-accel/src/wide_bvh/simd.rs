@@ -4,10 +4,10 @@
 //! instruction set for eight `f32` lanes:
 //! - [`Sse`]: two SSE registers (the `wide` crate's `f32x4`), on every x86-64 processor;
 //! - [`Avx`]: one AVX register, for processors with AVX2. An `Avx` value exists only once AVX2
-//!   has been detected ([`Avx::detect`]), which is what makes its instructions sound to run.
+//!   and FMA have been detected ([`Avx::detect`]), which is what makes its instructions sound.
 //!
 //! Each query runs its kernel with `Avx` inside a twin compiled with
-//! `#[target_feature(enable = "avx2")]`, so that the intrinsics inline into one tight loop, or
+//! `#[target_feature(enable = "avx2,fma")]`, so that the intrinsics inline into one tight loop, or
 //! with `Sse` otherwise. Every operation is the IEEE single-precision operation per lane, so
 //! both give results bit for bit equal to the same arithmetic on scalars.
 //!
@@ -116,17 +116,20 @@ impl Simd for Sse {
     }
 }
 
-/// One AVX register per eight lanes. Only [`Avx::detect`] makes one, on a processor with AVX2.
+/// One AVX register per eight lanes. Only [`Avx::detect`] makes one, on a processor with AVX2
+/// and FMA.
 #[cfg(target_arch = "x86_64")]
 #[derive(Clone, Copy, Debug)]
 pub struct Avx(());
 
 #[cfg(target_arch = "x86_64")]
 impl Avx {
-    /// An `Avx` when the processor has AVX2 (detected once, then cached by the standard library).
+    /// An `Avx` when the processor has AVX2 and FMA (detected once, then cached by the
+    /// standard library).
     #[inline(always)]
     pub fn detect() -> Option<Self> {
-        std::is_x86_feature_detected!("avx2").then_some(Avx(()))
+        (std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma"))
+            .then_some(Avx(()))
     }
 }
 
@@ -136,7 +139,7 @@ mod avx {
     use super::{Avx, Lanes, Simd};
     use std::arch::x86_64::*;
 
-    // SAFETY (every method): an `Avx` exists only when the processor has AVX2 (see
+    // SAFETY (every method): an `Avx` exists only when the processor has AVX2 and FMA (see
     // `Avx::detect`), so its AVX instructions can run; the arguments are registers, not
     // pointers, so nothing else can go wrong.
     impl Simd for Avx {

@@ -50,6 +50,8 @@ impl RayPre {
         if self.parallel {
             return self.enter_parallel(node, t_max);
         }
+        // (plane − o) · (1/d): the form whose rounding Ize's bound covers. (The fused
+        // plane · (1/d) − o · (1/d) is a little faster but cancels badly near the origin.)
         let t = |row: usize, a: usize| {
             s.mul(
                 s.sub(s.load(&node.planes[row]), s.splat(self.origin[a])),
@@ -107,6 +109,10 @@ pub(crate) trait ClosestLeaf {
         t_max: &mut f32,
         stats: &mut TraversalStats,
     ) -> bool;
+
+    /// A hint that leaf `first` will be visited later: start fetching its data.
+    #[inline(always)]
+    fn prefetch(&self, _first: u32) {}
 }
 
 /// What an any-hit traversal does at a leaf: return `true` to stop.
@@ -181,9 +187,11 @@ impl WideBvh {
                         let i = m.trailing_zeros() as usize;
                         m &= m - 1;
                         hits.push((node.child[i], node.count[i], t.0[i]));
+                        // Visited later: start fetching it now.
                         if node.count[i] == 0 {
-                            // Visited later: start fetching it now.
                             simd::prefetch(&self.nodes[node.child[i] as usize]);
+                        } else {
+                            leaf.prefetch(node.child[i]);
                         }
                     }
                     sort_by_distance(&mut hits);
@@ -301,7 +309,7 @@ impl WideBvh {
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     fn closest_avx2<F>(
         &self,
         s: Avx,
@@ -317,7 +325,7 @@ impl WideBvh {
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     fn any_avx2<F>(
         &self,
         s: Avx,

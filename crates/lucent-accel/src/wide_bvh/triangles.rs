@@ -6,7 +6,7 @@
 use super::lanes::{LANES, Lanes};
 #[cfg(target_arch = "x86_64")]
 use super::simd::Avx;
-use super::simd::{Simd, Sse};
+use super::simd::{self, Simd, Sse};
 use super::traverse::{AnyLeaf, ClosestLeaf};
 use super::{EMPTY, WIDTH, WideBvh, build_options};
 use crate::triangle::{Shear, TriangleHit, edge_functions_f64};
@@ -98,7 +98,7 @@ impl WideTriangleBvh {
         t_max: f32,
         skip: Option<u32>,
         stats: &mut TraversalStats,
-    ) -> Option<(u32, TriangleHit)> {
+    ) -> Option<PackedHit> {
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
@@ -133,7 +133,7 @@ impl WideTriangleBvh {
         t_max: f32,
         skip: Option<u32>,
         stats: &mut TraversalStats,
-    ) -> Option<(u32, TriangleHit)> {
+    ) -> Option<PackedHit> {
         self.closest(Sse, ray, t_max, skip, stats)
     }
 
@@ -150,7 +150,7 @@ impl WideTriangleBvh {
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     fn closest_avx2(
         &self,
         s: Avx,
@@ -158,12 +158,12 @@ impl WideTriangleBvh {
         t_max: f32,
         skip: Option<u32>,
         stats: &mut TraversalStats,
-    ) -> Option<(u32, TriangleHit)> {
+    ) -> Option<PackedHit> {
         self.closest(s, ray, t_max, skip, stats)
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     fn any_avx2<F>(
         &self,
         s: Avx,
@@ -186,7 +186,7 @@ impl WideTriangleBvh {
         t_max: f32,
         skip: Option<u32>,
         stats: &mut TraversalStats,
-    ) -> Option<(u32, TriangleHit)> {
+    ) -> Option<PackedHit> {
         let mut leaves = NearestInPacks {
             s,
             packs: &self.packs,
@@ -222,16 +222,24 @@ impl WideTriangleBvh {
     }
 }
 
+/// A triangle hit by [`WideTriangleBvh::closest_hit`]: its index, the hit, its vertices.
+pub type PackedHit = (u32, TriangleHit, [Vec3; 3]);
+
 /// The closest-hit leaf test: the nearest hit over packs, ties to the lower triangle index.
 struct NearestInPacks<'a, S> {
     s: S,
     packs: &'a [Pack],
     pre: PackRay,
     skip: Option<u32>,
-    best: Option<(u32, TriangleHit)>,
+    best: Option<PackedHit>,
 }
 
 impl<S: Simd> ClosestLeaf for NearestInPacks<'_, S> {
+    #[inline(always)]
+    fn prefetch(&self, first: u32) {
+        simd::prefetch(&self.packs[first as usize]);
+    }
+
     #[inline(always)]
     fn visit(
         &mut self,
@@ -251,12 +259,19 @@ impl<S: Simd> ClosestLeaf for NearestInPacks<'_, S> {
                 if self.skip == Some(id) {
                     continue;
                 }
-                let better =
-                    t.0[lane] < *t_max || self.best.is_none_or(|(b, h)| t.0[lane] == h.t && id < b);
+                let better = t.0[lane] < *t_max
+                    || self.best.is_none_or(|(b, h, _)| t.0[lane] == h.t && id < b);
                 if better {
                     *t_max = t.0[lane];
                     let bary = [bary[0].0[lane], bary[1].0[lane], bary[2].0[lane]];
-                    self.best = Some((id, TriangleHit { t: t.0[lane], bary }));
+                    let v = |k: usize| {
+                        Vec3::new(
+                            pack.v[k][0].0[lane],
+                            pack.v[k][1].0[lane],
+                            pack.v[k][2].0[lane],
+                        )
+                    };
+                    self.best = Some((id, TriangleHit { t: t.0[lane], bary }, [v(0), v(1), v(2)]));
                     found = true;
                 }
             }

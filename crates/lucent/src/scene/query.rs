@@ -3,6 +3,7 @@
 use super::{MeshAccel, Scene};
 use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, gamma, triangle};
 use crate::spawn::Leaving;
+use glam::Vec3;
 use lucent_accel::{Accelerator, Ray, TraversalStats};
 
 /// The nearest hit found so far, before its surface is worked out.
@@ -10,8 +11,8 @@ use lucent_accel::{Accelerator, Ray, TraversalStats};
 enum Candidate {
     Plane(u32, f32),
     Sphere(u32, f32),
-    /// Instance, triangle, hit in the instance's object space.
-    Triangle(u32, u32, TriangleHit),
+    /// Instance, triangle, hit and vertices in the instance's object space.
+    Triangle(u32, u32, TriangleHit, [Vec3; 3]),
 }
 
 /// The running nearest hit, with the tie rule: at equal `t`, the lower key wins, and planes
@@ -162,7 +163,7 @@ impl Scene {
                 let v = entry.mesh.vertices(tri);
                 match self.triangle_test.intersect(&local, v, inclusive(*tm)) {
                     Some(hit)
-                        if nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit)) =>
+                        if nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit, v)) =>
                     {
                         *tm = hit.t;
                         true
@@ -171,8 +172,8 @@ impl Scene {
                 }
             }),
             MeshAccel::Packed(packed) => match packed.closest_hit(&local, t_max, skip, stats) {
-                Some((tri, hit)) => {
-                    nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit))
+                Some((tri, hit, v)) => {
+                    nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit, v))
                 }
                 None => false,
             },
@@ -211,15 +212,14 @@ impl Scene {
                     error: gamma(6) * (sphere.center.abs() + (point - sphere.center).abs()),
                 }
             }
-            Candidate::Triangle(k, tri, hit) => {
+            Candidate::Triangle(k, tri, hit, v) => {
                 let (instance, tag) = &self.instances[k as usize];
-                let v = self.meshes[instance.mesh as usize].mesh.vertices(tri);
                 let local_point = hit.point(v);
                 let [b0, b1, b2] = hit.bary;
                 let local_error =
                     gamma(7) * ((b0 * v[0]).abs() + (b1 * v[1]).abs() + (b2 * v[2]).abs());
                 // A triangle that was hit has an area, so its normal exists.
-                let local_normal = triangle::normal(v).unwrap_or(glam::Vec3::Z);
+                let local_normal = triangle::normal(v).unwrap_or(Vec3::Z);
                 let (point, normal, error) = match instance.transform {
                     Some(t) => (
                         t.point_to_world(local_point),
