@@ -3,7 +3,7 @@
 
 use crate::build::Loaded;
 use crate::error::LoadError;
-use crate::obj::read_obj;
+use crate::mesh_file::read_mesh;
 use glam::Vec3;
 use lucent::Rgb;
 use lucent::accel::AccelKind;
@@ -12,24 +12,19 @@ use lucent::light::{Falloff, Light, PointLight};
 use lucent::material::Material;
 use lucent::render::RenderSettings;
 use lucent::scene::SceneBuilder;
-use lucent::shape::Mesh;
 use std::path::Path;
 
 /// Vertical field of view of the framing camera, in degrees.
 const FOV: f32 = 40.0;
 
-/// The scene of the OBJ file at `path`, rendered at `width × height` with `accel`.
+/// The scene of the mesh file (OBJ or PLY) at `path`, rendered at `width × height` with `accel`.
 pub fn bare_mesh_scene(
     path: &Path,
     width: u32,
     height: u32,
     accel: AccelKind,
 ) -> Result<Loaded, LoadError> {
-    let obj = read_obj(path)?;
-    let mesh = Mesh {
-        positions: obj.positions,
-        triangles: obj.triangles,
-    };
+    let mesh = read_mesh(path)?;
     let bounds = mesh.bounds();
     if bounds.is_empty() {
         return Err(LoadError::file(path, "the mesh has no vertices"));

@@ -6,7 +6,7 @@ use crate::desc::light::FalloffName;
 use crate::desc::settings::TriangleTestName;
 use crate::desc::{IntegratorName, LightKind, ObjectDesc, ObjectKind, SceneDesc};
 use crate::error::{LoadError, Source};
-use crate::obj::read_obj;
+use crate::mesh_file::read_mesh;
 use glam::{Affine3A, Mat3, Vec3};
 use lucent::Rgb;
 use lucent::accel::AccelKind;
@@ -363,11 +363,7 @@ fn add_object(
             let mesh = match meshes.get(&key) {
                 Some(&id) => id,
                 None => {
-                    let obj = read_obj(&path)?;
-                    let id = builder.add_mesh(Mesh {
-                        positions: obj.positions,
-                        triangles: obj.triangles,
-                    });
+                    let id = builder.add_mesh(read_mesh(&path)?);
                     meshes.insert(key, id);
                     id
                 }

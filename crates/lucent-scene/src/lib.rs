@@ -11,7 +11,9 @@ pub mod bare_mesh;
 pub mod build;
 pub mod desc;
 pub mod error;
+pub mod mesh_file;
 pub mod obj;
+pub mod ply;
 
 pub use bare_mesh::bare_mesh_scene;
 pub use build::{Loaded, build};

@@ -220,7 +220,10 @@ fn default_scenes() -> anyhow::Result<Vec<PathBuf>> {
         };
         let mut found: Vec<PathBuf> = entries
             .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|e| e == "toml" || e == "obj"))
+            .filter(|p| {
+                p.extension().is_some_and(|e| e == "toml")
+                    || lucent_scene::mesh_file::is_mesh_file(p)
+            })
             .collect();
         found.sort();
         out.extend(found);
@@ -231,12 +234,9 @@ fn default_scenes() -> anyhow::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-/// A scene (TOML) or bare mesh (OBJ) with accelerator `kind`, its camera at 1024×1024.
+/// A scene (TOML) or bare mesh (OBJ, PLY) with accelerator `kind`, its camera at 1024×1024.
 fn load(path: &Path, kind: AccelKind) -> anyhow::Result<Scene> {
-    let is_obj = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    let loaded = if is_obj {
+    let loaded = if lucent_scene::mesh_file::is_mesh_file(path) {
         bare_mesh_scene(path, CAMERA_SIDE, CAMERA_SIDE, kind)?
     } else {
         let mut file = SceneFile::read(path)?;
