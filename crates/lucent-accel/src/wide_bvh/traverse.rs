@@ -46,9 +46,10 @@ impl RayPre {
     /// box (`lo = +∞`, `hi = −∞`) is never entered. A ray with a zero direction component takes
     /// the robust path, where `0 · ∞ = NaN` counts as no constraint (as in [`crate::Aabb::hit`]).
     #[inline(always)]
-    pub(crate) fn enter<S: Simd>(&self, s: S, node: &NodeW, t_max: f32) -> (u32, Lanes) {
+    pub(crate) fn enter<S: Simd>(&self, s: S, node: &NodeW, t_max: f32) -> (u32, S::V) {
         if self.parallel {
-            return self.enter_parallel(node, t_max);
+            let (mask, near) = self.enter_parallel(node, t_max);
+            return (mask, s.load(&near));
         }
         // (plane − o) · (1/d): the form whose rounding Ize's bound covers. (The fused
         // plane · (1/d) − o · (1/d) is a little faster but cancels badly near the origin.)
@@ -70,7 +71,7 @@ impl RayPre {
             s.mul(exit, s.splat(ROUNDING_SLACK)),
             s.splat(t_max * CULL_SLACK),
         );
-        (s.le(near, far), s.store(near))
+        (s.le(near, far), near)
     }
 
     /// The robust test, lane by lane (rays exactly parallel to an axis are rare).
@@ -180,6 +181,16 @@ impl WideBvh {
                         (child, count) = (node.child[first], node.count[first]);
                         continue;
                     }
+                    let t = s.store(t);
+                    let second = rest.trailing_zeros() as usize;
+                    if rest & (rest - 1) == 0 {
+                        // Two children: the nearer next, the farther on the stack.
+                        let (near, far) = if t.0[second] < t.0[first] { (second, first) } else { (first, second) };
+                        self.prefetch_child(node, far, leaf);
+                        stack.push((node.child[far], node.count[far], t.0[far]));
+                        (child, count) = (node.child[near], node.count[near]);
+                        continue;
+                    }
                     let mut hits: ArrayVec<Entry, WIDTH> = ArrayVec::new();
                     hits.push((node.child[first], node.count[first], t.0[first]));
                     let mut m = rest;
@@ -187,12 +198,7 @@ impl WideBvh {
                         let i = m.trailing_zeros() as usize;
                         m &= m - 1;
                         hits.push((node.child[i], node.count[i], t.0[i]));
-                        // Visited later: start fetching it now.
-                        if node.count[i] == 0 {
-                            simd::prefetch(&self.nodes[node.child[i] as usize]);
-                        } else {
-                            leaf.prefetch(node.child[i]);
-                        }
+                        self.prefetch_child(node, i, leaf);
                     }
                     sort_by_distance(&mut hits);
                     stack.extend(hits[1..].iter().rev().copied());
@@ -338,6 +344,18 @@ impl WideBvh {
         F: FnMut(u32) -> bool,
     {
         self.any_generic(s, ray, t_max, stats, leaf)
+    }
+}
+
+impl WideBvh {
+    /// Starts fetching child `i` of `node`, which will be visited later.
+    #[inline(always)]
+    fn prefetch_child<L: ClosestLeaf>(&self, node: &NodeW, i: usize, leaf: &L) {
+        if node.count[i] == 0 {
+            simd::prefetch(&self.nodes[node.child[i] as usize]);
+        } else {
+            leaf.prefetch(node.child[i]);
+        }
     }
 }
 

@@ -37,11 +37,16 @@ const LEAF_SIZE: usize = 8;
 impl WideTriangleBvh {
     /// Builds over the triangles `triangles` of `positions` (indices must be in range).
     pub fn new(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
+        Self::with_options(positions, triangles, &build_options(LEAF_SIZE))
+    }
+
+    /// [`WideTriangleBvh::new`] with the binary build's settings given.
+    pub fn with_options(positions: &[Vec3], triangles: &[[u32; 3]], options: &crate::bvh::BuildOptions) -> Self {
         let vertices = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
         let boxes: Vec<Aabb> = (0..triangles.len() as u32)
             .map(|t| Aabb::from_points(vertices(t)))
             .collect();
-        let mut bvh = WideBvh::from_binary(&Bvh::build(&boxes, &build_options(LEAF_SIZE)));
+        let mut bvh = WideBvh::from_binary(&Bvh::build(&boxes, options));
         let mut packs = Vec::with_capacity(triangles.len().div_ceil(LANES));
         // Re-point every leaf from primitive slots to packs of its triangles.
         let mut repack = |first: u32, count: u32| -> (u32, u32) {
