@@ -185,7 +185,11 @@ impl WideBvh {
                     let second = rest.trailing_zeros() as usize;
                     if rest & (rest - 1) == 0 {
                         // Two children: the nearer next, the farther on the stack.
-                        let (near, far) = if t.0[second] < t.0[first] { (second, first) } else { (first, second) };
+                        let (near, far) = if t.0[second] < t.0[first] {
+                            (second, first)
+                        } else {
+                            (first, second)
+                        };
                         self.prefetch_child(node, far, leaf);
                         stack.push((node.child[far], node.count[far], t.0[far]));
                         (child, count) = (node.child[near], node.count[near]);

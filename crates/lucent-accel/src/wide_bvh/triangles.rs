@@ -41,7 +41,11 @@ impl WideTriangleBvh {
     }
 
     /// [`WideTriangleBvh::new`] with the binary build's settings given.
-    pub fn with_options(positions: &[Vec3], triangles: &[[u32; 3]], options: &crate::bvh::BuildOptions) -> Self {
+    pub fn with_options(
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        options: &crate::bvh::BuildOptions,
+    ) -> Self {
         let vertices = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
         let boxes: Vec<Aabb> = (0..triangles.len() as u32)
             .map(|t| Aabb::from_points(vertices(t)))

@@ -71,7 +71,7 @@ impl Row {
         let rates: Vec<String> = self
             .measurements
             .iter()
-            .map(|(s, t, m)| format!("{s}/{t}t {:.2}", m.mrays()))
+            .map(|(s, t, m)| format!("{s}/{t}t {}", rate(m.mrays())))
             .collect();
         format!(
             "{:<7} build {:>8.2} ms  {}",
@@ -116,11 +116,7 @@ pub fn table(rows: &[Row], threads: &[usize]) -> String {
         );
         for set in SETS {
             for &t in threads {
-                let _ = write!(
-                    line,
-                    " {:>12}",
-                    opt(row.rate(set, t).map(|r| format!("{r:.3}")))
-                );
+                let _ = write!(line, " {:>12}", opt(row.rate(set, t).map(rate)));
             }
         }
         let brute = rows
@@ -170,6 +166,16 @@ fn peer_ratios(rows: &[Row], threads: &[usize]) -> String {
         }
     }
     out
+}
+
+/// A rate with three significant digits (the flat structures on large scenes run at a few
+/// thousand rays per second).
+fn rate(r: f64) -> String {
+    if r >= 1.0 || r == 0.0 {
+        format!("{r:.3}")
+    } else {
+        format!("{r:.3e}")
+    }
 }
 
 fn truncate(s: &str, n: usize) -> String {
