@@ -250,8 +250,8 @@ fn load(path: &Path, kind: AccelKind) -> anyhow::Result<Scene> {
     Ok(loaded.scene)
 }
 
-/// Traces the first `count` rays of `set` on `threads` threads; closest hit, or any hit for
-/// occlusion sets.
+/// Traces `count` rays of `set`, spread evenly over it, on `threads` threads; closest hit, or
+/// any hit for occlusion sets.
 fn measure(
     scene: &Scene,
     set: &RaySet,
@@ -262,6 +262,9 @@ fn measure(
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?;
+    // A subset is spread evenly over the set (camera rays are in reading order: the first
+    // rows alone would be all sky).
+    let stride = (set.rays.len() / count.max(1)).max(1);
     let start = Instant::now();
     let (hits, stats) = pool.install(|| {
         (0..count)
@@ -269,7 +272,8 @@ fn measure(
             .with_min_len(1024)
             .fold(
                 || (0u64, TraversalStats::default()),
-                |(hits, mut stats), i| {
+                |(hits, mut stats), k| {
+                    let i = (k * stride) % set.rays.len();
                     let ray = &set.rays[i];
                     let hit = if occlusion {
                         scene.occluded(ray, set.t_max[i], &mut stats)

@@ -195,7 +195,7 @@ pub fn csv(rows: &[Row]) -> String {
         for (set, threads, m) in &r.measurements {
             let _ = writeln!(
                 out,
-                "{},{},{},{:.3},{},{},{},{set},{threads},{},{:.6},{:.4},{},{},{}",
+                "{},{},{},{:.3},{},{},{},{set},{threads},{},{:.6},{:.6},{},{},{}",
                 r.scene,
                 r.primitives,
                 r.accel,
@@ -223,7 +223,7 @@ pub fn json(rows: &[Row]) -> String {
     for r in rows {
         for (set, threads, m) in &r.measurements {
             items.push(format!(
-                "{{\"scene\":{:?},\"primitives\":{},\"accel\":{:?},\"build_ms\":{:.3},\"nodes\":{},\"depth\":{},\"bytes_per_prim\":{},\"rays_kind\":\"{set}\",\"threads\":{threads},\"rays\":{},\"seconds\":{:.6},\"mrays_per_s\":{:.4},\"hits\":{},\"nodes_visited\":{},\"primitives_tested\":{}}}",
+                "{{\"scene\":{:?},\"primitives\":{},\"accel\":{:?},\"build_ms\":{:.3},\"nodes\":{},\"depth\":{},\"bytes_per_prim\":{},\"rays_kind\":\"{set}\",\"threads\":{threads},\"rays\":{},\"seconds\":{:.6},\"mrays_per_s\":{:.6},\"hits\":{},\"nodes_visited\":{},\"primitives_tested\":{}}}",
                 r.scene,
                 r.primitives,
                 r.accel,
