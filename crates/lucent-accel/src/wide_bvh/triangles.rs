@@ -380,12 +380,19 @@ impl PackRay {
         }
         let negative = s.lt(u, zero) | s.lt(v, zero) | s.lt(w, zero);
         let positive = s.lt(zero, u) | s.lt(zero, v) | s.lt(zero, w);
+        // Unused lanes hold NaN vertices: their edge functions are NaN, neither sign.
+        let inside = !(negative & positive) & s.eq(u, u);
+        if inside == 0 {
+            // The ray passes beside all eight: skip the division (most packs, for most rays).
+            let none = Lanes::splat(0.0);
+            return (0, none, [none; 3]);
+        }
         let det = s.add(s.add(u, v), w);
         let (az, bz, cz) = (s.mul(sz, a[2]), s.mul(sz, b[2]), s.mul(sz, c[2]));
         let inv = s.div(s.splat(1.0), det);
         let t = s.mul(s.add(s.add(s.mul(u, az), s.mul(v, bz)), s.mul(w, cz)), inv);
         let in_range = s.lt(zero, t) & s.le(t, s.splat(t_max));
-        let mask = in_range & !(negative & positive) & !s.eq(det, zero);
+        let mask = in_range & inside & !s.eq(det, zero);
         (
             mask,
             s.store(t),
