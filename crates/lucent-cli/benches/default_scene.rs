@@ -4,7 +4,7 @@
 //! Run: `cargo bench -p lucent-cli --bench default_scene`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use lucent::render::render;
+use lucent::render::{Hooks, render};
 use lucent_scene::SceneFile;
 use std::sync::atomic::AtomicBool;
 
@@ -13,6 +13,11 @@ fn default_scene(c: &mut Criterion) {
         .build()
         .expect("the default scene builds");
     let cancel = AtomicBool::new(false);
+    let hooks = Hooks {
+        cancel: &cancel,
+        progress: &|_, _| {},
+        checkpoint: None,
+    };
     let mut group = c.benchmark_group("default_scene_800x600_1spp");
     group.sample_size(20);
     for threads in [1, 2] {
@@ -20,14 +25,14 @@ fn default_scene(c: &mut Criterion) {
             threads,
             ..loaded.settings
         };
-        let rays = render(&loaded.scene, &settings, &cancel, &|_, _| {})
+        let rays = render(&loaded.scene, &settings, None, &hooks)
             .unwrap()
             .stats
             .rays
             .total();
         group.throughput(Throughput::Elements(rays));
         group.bench_function(format!("{threads}_threads"), |b| {
-            b.iter(|| render(&loaded.scene, &settings, &cancel, &|_, _| {}).unwrap())
+            b.iter(|| render(&loaded.scene, &settings, None, &hooks).unwrap())
         });
     }
     group.finish();

@@ -18,8 +18,10 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene to an image (the built-in Whitted scene when none is given).
     Render(RenderArgs),
-    /// Print what a scene holds: objects, triangles, lights, materials and bounds.
+    /// Print what a scene holds: objects, triangles, lights, materials, bounds and memory.
     Info(InfoArgs),
+    /// Combine the partial films of a sharded render into one image.
+    Merge(MergeArgs),
     /// Measure every accelerator on the same rays: build time, memory, million rays per second.
     Bench(BenchArgs),
 }
@@ -42,14 +44,9 @@ pub enum TriangleTestArg {
     Projection,
 }
 
-/// `lucent render`.
-#[derive(Debug, Args)]
-pub struct RenderArgs {
-    /// Scene file (TOML); the built-in default scene when omitted.
-    pub scene: Option<PathBuf>,
-    /// Output image: .png (sRGB, 8 bit), .pfm or .exr (linear float).
-    #[arg(short, long, default_value = "render.png")]
-    pub output: PathBuf,
+/// Settings of the command line that override the scene file's.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Args)]
+pub struct Overrides {
     /// Image width in pixels (overrides the scene file).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
     pub width: Option<u32>,
@@ -65,9 +62,6 @@ pub struct RenderArgs {
     /// Deepest reflection/refraction bounce (overrides the scene file).
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=1000))]
     pub max_depth: Option<u32>,
-    /// Render threads; 0 uses every core.
-    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
-    pub threads: u16,
     /// Seed of the random sample positions (overrides the scene file).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -79,11 +73,57 @@ pub struct RenderArgs {
     pub triangle_test: Option<TriangleTestArg>,
 }
 
+/// `lucent render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// Scene file (TOML); the built-in default scene when omitted.
+    pub scene: Option<PathBuf>,
+    /// Settings that override the scene file's.
+    #[command(flatten)]
+    pub overrides: Overrides,
+    /// Output image: .png (sRGB, 8 bit), .pfm or .exr (linear float); a shard's output is a
+    /// partial film (.exr) for `lucent merge`. Default: render.png.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Render threads; 0 uses every core.
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
+    pub threads: u16,
+    /// Render only shard I of N (tiles I, I+N, I+2N, …), as `I/N`; `auto/N` takes I from
+    /// $SLURM_ARRAY_TASK_ID or $JOB_COMPLETION_INDEX.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Where to write the checkpoint on Ctrl-C or SIGTERM (and every --checkpoint-every
+    /// seconds): an OpenEXR film. Default: the output's name with `.checkpoint` added.
+    #[arg(long)]
+    pub checkpoint: Option<PathBuf>,
+    /// Also write the checkpoint every this many seconds, for crash safety.
+    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
+    pub checkpoint_every: Option<f64>,
+    /// Continue a stopped render from its checkpoint, to the samples it asked for; the scene
+    /// and settings come from the checkpoint.
+    #[arg(long, value_name = "CHECKPOINT")]
+    pub resume: Option<PathBuf>,
+}
+
+/// `lucent merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Partial films written by `lucent render --shard I/N -o PART.exr`, one per shard.
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// The merged image: .png, .pfm or .exr.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
 /// `lucent info`.
 #[derive(Debug, Args)]
 pub struct InfoArgs {
     /// Scene file (TOML); the built-in default scene when omitted.
     pub scene: Option<PathBuf>,
+    /// Settings that override the scene file's.
+    #[command(flatten)]
+    pub overrides: Overrides,
 }
 
 /// `lucent bench`.
@@ -109,4 +149,14 @@ pub struct BenchArgs {
     /// Also write the results as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+}
+
+/// A positive, finite number of seconds (at most a year).
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v > 0.0 && v <= 3.2e7 => Ok(v),
+        _ => Err(format!(
+            "expected a positive number of seconds (at most a year), got `{s}`"
+        )),
+    }
 }

@@ -1,16 +1,20 @@
-//! `lucent info`: what a scene holds.
+//! `lucent info`: what a scene holds, and what rendering it will need.
 
 use crate::cli::InfoArgs;
-use crate::render::read_scene;
+use crate::job::Job;
 use std::process::ExitCode;
 
-/// Prints counts, bounds and settings of the scene.
+/// Prints counts, bounds, settings, the accelerator and the memory the render will need.
 pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
-    let file = read_scene(args.scene.as_deref())?;
-    let loaded = file.build()?;
+    let job = Job::load(args.scene.as_deref(), &args.overrides)?;
+    let loaded = &job.loaded;
     let scene = &loaded.scene;
     let c = scene.counts();
-    println!("scene:       {}", file.path.display());
+    let name = job.scene_path.as_ref().map_or_else(
+        || "<built-in default scene>".to_string(),
+        |p| p.display().to_string(),
+    );
+    println!("scene:       {name}");
     println!(
         "objects:     {} ({} spheres, {} planes, {} mesh instances of {} meshes)",
         c.objects, c.spheres, c.planes, c.instances, c.meshes
@@ -34,10 +38,9 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         println!("bounds:      {} to {}{infinite}", v(b.min), v(b.max));
     }
     let s = &loaded.settings;
+    let (w, h) = (scene.camera.width(), scene.camera.height());
     println!(
-        "image:       {}×{}, {} spp, integrator {}",
-        scene.camera.width(),
-        scene.camera.height(),
+        "image:       {w}×{h}, {} spp, integrator {}",
         s.spp,
         s.integrator.name()
     );
@@ -52,5 +55,14 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         a.bytes as f64 / a.primitives.max(1) as f64
     );
     println!("triangle test: {}", scene.triangle_test().name());
+    let m = job.memory();
+    let mb = |b: u64| b as f64 / 1e6;
+    println!(
+        "memory:      about {:.1} MB: scene {:.1} MB (geometry and accelerators), film {:.1} MB, writing files {:.1} MB",
+        mb(m.total()),
+        mb(m.scene),
+        mb(m.film),
+        mb(m.files)
+    );
     Ok(ExitCode::SUCCESS)
 }

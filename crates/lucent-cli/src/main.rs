@@ -2,7 +2,10 @@
 
 mod bench;
 mod cli;
+mod film_file;
 mod info;
+mod job;
+mod merge;
 mod output;
 mod render;
 
@@ -18,6 +21,7 @@ fn main() -> ExitCode {
     let result = match args.command {
         cli::Command::Render(a) => render::run(&a),
         cli::Command::Info(a) => info::run(&a),
+        cli::Command::Merge(a) => merge::run(&a),
         cli::Command::Bench(a) => bench::run(&a),
     };
     match result {

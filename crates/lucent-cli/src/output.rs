@@ -1,10 +1,11 @@
 //! Image files: PNG (sRGB, 8 bit), PFM and OpenEXR (linear float).
 //!
 //! Every file is written under a temporary name in the same folder and renamed into place,
-//! so a crash never leaves a truncated image under the final name.
+//! so a crash (even SIGKILL) never leaves a truncated image under the final name. PNG and EXR
+//! carry the samples per pixel reached in their metadata (`lucent.samples`: `N`, or `MIN..MAX`
+//! when a stopped render left pixels at different counts).
 
-use anyhow::{Context, bail};
-use image::{DynamicImage, ImageBuffer, Rgb, Rgb32FImage, RgbImage};
+use anyhow::{Context, anyhow, bail};
 use lucent::film::Film;
 use lucent::film::tonemap::srgb8;
 use std::fs::File;
@@ -41,13 +42,23 @@ impl ImageFormat {
     }
 }
 
-/// Writes `film` to `path` as `format`, atomically.
-pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
+/// Runs `write` on a temporary file beside `path`, flushes it to disk, and renames it to `path`;
+/// on failure the temporary file is removed and `path` is untouched.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<File>) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
     let tmp = temporary_path(path);
-    let result = write_to(film, &tmp, format).and_then(|()| {
+    let result = (|| {
+        let file =
+            File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
+        let mut out = BufWriter::new(file);
+        write(&mut out)?;
+        let file = out.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
         std::fs::rename(&tmp, path)
             .with_context(|| format!("cannot move {} into place", tmp.display()))
-    });
+    })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
@@ -63,29 +74,63 @@ fn temporary_path(path: &Path) -> PathBuf {
     path.with_file_name(name)
 }
 
-fn write_to(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
+/// The samples per pixel the film holds, as metadata says it.
+fn samples_text(film: &Film) -> String {
+    match film.sample_range() {
+        (a, b) if a == b => a.to_string(),
+        (a, b) => format!("{a}..{b}"),
+    }
+}
+
+/// Writes `film` to `path` as `format`, atomically.
+pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
     let (w, h) = (film.width(), film.height());
     let pixels = film.to_linear_rgb();
-    let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-    let mut out = BufWriter::new(file);
-    match format {
+    let samples = samples_text(film);
+    write_atomically(path, |out| match format {
         ImageFormat::Png => {
-            let bytes = pixels.iter().flat_map(|p| p.map(srgb8)).collect();
-            let img: RgbImage =
-                ImageBuffer::from_raw(w, h, bytes).context("image size mismatch")?;
-            DynamicImage::ImageRgb8(img).write_to(&mut out, image::ImageFormat::Png)?;
+            let mut encoder = png::Encoder::new(&mut *out, w, h);
+            encoder.set_color(png::ColorType::Rgb);
+            encoder.set_depth(png::BitDepth::Eight);
+            encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+            encoder.add_text_chunk("lucent.samples".into(), samples.clone())?;
+            let mut writer = encoder.write_header()?;
+            let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.map(srgb8)).collect();
+            writer.write_image_data(&bytes)?;
+            writer.finish()?;
+            Ok(())
         }
         ImageFormat::Exr => {
-            let floats = pixels.iter().flatten().copied().collect();
-            let img: Rgb32FImage = ImageBuffer::<Rgb<f32>, _>::from_raw(w, h, floats)
-                .context("image size mismatch")?;
-            DynamicImage::ImageRgb32F(img).write_to(&mut out, image::ImageFormat::OpenExr)?;
+            use exr::prelude::*;
+            let channel = |name: &str, c: usize| {
+                AnyChannel::new(
+                    name,
+                    FlatSamples::F32(pixels.iter().map(|p| p[c]).collect()),
+                )
+            };
+            let channels = AnyChannels::sort(SmallVec::from_vec(vec![
+                channel("R", 0),
+                channel("G", 1),
+                channel("B", 2),
+            ]));
+            let mut attributes = LayerAttributes::named("lucent");
+            attributes.other.insert(
+                Text::new_or_panic("lucent.samples"),
+                AttributeValue::Text(Text::new_or_panic(samples.clone())),
+            );
+            let image = Image::from_layer(Layer::new(
+                (w as usize, h as usize),
+                attributes,
+                Encoding::FAST_LOSSLESS,
+                channels,
+            ));
+            image
+                .write()
+                .to_buffered(&mut *out)
+                .map_err(|e| anyhow!("{e}"))
         }
-        ImageFormat::Pfm => write_pfm(&mut out, w, h, &pixels)?,
-    }
-    let file = out.into_inner().map_err(|e| e.into_error())?;
-    file.sync_all()?;
-    Ok(())
+        ImageFormat::Pfm => Ok(write_pfm(out, w, h, &pixels)?),
+    })
 }
 
 /// Portable Float Map: a text header, then little-endian floats, rows from the bottom up.

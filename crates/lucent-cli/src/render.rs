@@ -1,107 +1,126 @@
-//! `lucent render`: read, override, build, render with progress, write, report.
+//! `lucent render`: read, override, build, render with progress, write, report — and stop
+//! cleanly on Ctrl-C or SIGTERM with a checkpoint, resume from one, or render one shard.
 
-use crate::cli::{IntegratorArg, RenderArgs, TriangleTestArg};
+use crate::cli::RenderArgs;
+use crate::film_file::{FilmMeta, read_film, write_film};
+use crate::job::Job;
 use crate::output::{ImageFormat, write_image};
-use anyhow::Context;
+use anyhow::{Context, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use lucent::render::{RenderStats, render};
-use lucent_scene::SceneFile;
-use lucent_scene::Spanned;
-use lucent_scene::desc::IntegratorName;
-use lucent_scene::desc::settings::TriangleTestName;
-use std::path::Path;
+use lucent::film::Film;
+use lucent::render::{Checkpoints, Hooks, RenderStats, Shard, render};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
-/// Exit status of a render stopped by Ctrl-C (128 + SIGINT), after the partial image is written.
+/// Exit status of a render stopped by Ctrl-C or SIGTERM (128 + SIGINT), after its image and
+/// checkpoint are written.
 const INTERRUPTED: u8 = 130;
 
-/// The scene file at `path`, or the built-in default scene.
-pub fn read_scene(path: Option<&Path>) -> anyhow::Result<SceneFile> {
-    Ok(match path {
-        Some(p) => SceneFile::read(p)?,
-        None => SceneFile::default_scene(),
-    })
+/// What this run renders, and where things go.
+struct Plan {
+    job: Job,
+    shard: Shard,
+    start: Option<Film>,
+    output: PathBuf,
+    format: ImageFormat,
+    checkpoint: PathBuf,
 }
 
-/// Applies the command line's overrides to the scene description. An overridden value loses
-/// its place in the file, so an error about it does not point at the file's value.
-fn apply_overrides(file: &mut SceneFile, args: &RenderArgs) {
-    let from_flag = |v| Spanned::new(0..0, v);
-    let d = &mut file.desc;
-    if let Some(w) = args.width {
-        d.image.width = from_flag(w);
-    }
-    if let Some(h) = args.height {
-        d.image.height = from_flag(h);
-    }
-    if let Some(n) = args.spp {
-        d.image.samples = from_flag(n);
-    }
-    if let Some(i) = args.integrator {
-        d.render.integrator = match i {
-            IntegratorArg::Raycast => IntegratorName::Raycast,
-            IntegratorArg::Whitted => IntegratorName::Whitted,
-        };
-    }
-    if let Some(m) = args.max_depth {
-        d.render.max_depth = from_flag(m);
-    }
-    if let Some(s) = args.seed {
-        d.render.seed = s;
-    }
-    if let Some(a) = args.accel {
-        d.render.accelerator = Spanned::new(0..0, a.name().to_string());
-    }
-    if let Some(t) = args.triangle_test {
-        d.render.triangle_test = match t {
-            TriangleTestArg::Watertight => TriangleTestName::Watertight,
-            TriangleTestArg::Projection => TriangleTestName::Projection,
-        };
-    }
-}
-
-/// Renders and writes the image; exits 130 after writing a partial image on Ctrl-C.
+/// Renders and writes the image; exits 130 after writing what it has on Ctrl-C or SIGTERM.
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
-    // Check the output name before spending time on the render.
-    let format = ImageFormat::from_path(&args.output)?;
-    let mut file = read_scene(args.scene.as_deref())?;
-    apply_overrides(&mut file, args);
-    let loaded = file.build()?;
-    let mut settings = loaded.settings;
+    let plan = if let Some(ckpt) = &args.resume {
+        plan_resume(args, ckpt)?
+    } else {
+        plan_new(args)?
+    };
+    let mut settings = plan.job.loaded.settings;
     settings.threads = usize::from(args.threads);
+    settings.shard = plan.shard;
+    let meta = FilmMeta {
+        fingerprint: plan.job.fingerprint(),
+        shard: plan.shard,
+        spp: settings.spp,
+        scene: plan
+            .job
+            .scene_path
+            .as_ref()
+            .map(|p| absolute(p).display().to_string())
+            .unwrap_or_default(),
+        overrides: plan.job.overrides.to_pairs(),
+        output: absolute(&plan.output).display().to_string(),
+    };
 
+    // The scene is built; the film and the files are still to come.
+    let memory = plan.job.memory();
+    if let Some(free) = crate::job::available_memory()
+        && memory.film + memory.files > free
+    {
+        eprintln!(
+            "warning: the film and its files need about {:.0} MB, more than the {:.0} MB available; the render may fail (a smaller --width/--height needs less)",
+            (memory.film + memory.files) as f64 / 1e6,
+            free as f64 / 1e6
+        );
+    }
     let cancel = Arc::new(AtomicBool::new(false));
     let handler_flag = Arc::clone(&cancel);
     ctrlc::set_handler(move || {
         if handler_flag.swap(true, Ordering::SeqCst) {
-            // A second Ctrl-C: the user does not want to wait for the partial image.
+            // A second signal: the user does not want to wait for the image and checkpoint.
             std::process::exit(i32::from(INTERRUPTED));
         }
     })
     .context("cannot install the Ctrl-C handler")?;
 
-    let (w, h) = (loaded.scene.camera.width(), loaded.scene.camera.height());
-    let bar = ProgressBar::with_draw_target(
-        Some(u64::from(w) * u64::from(h)),
-        ProgressDrawTarget::stderr(),
-    );
+    let scene = &plan.job.loaded.scene;
+    let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
     bar.set_style(
         ProgressStyle::with_template(
             "{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}",
         )
         .expect("a valid progress template"),
     );
-    let progress = |done: u64, _total: u64| bar.set_position(done);
-    let rendered = render(&loaded.scene, &settings, &cancel, &progress)?;
+    let progress = |done: u64, total: u64| {
+        bar.set_length(total);
+        bar.set_position(done);
+    };
+    let checkpoint_error = std::sync::Mutex::new(None);
+    let save = |film: &Film| {
+        if let Err(e) = write_film(&plan.checkpoint, film, &meta) {
+            *checkpoint_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+        }
+    };
+    let every = args.checkpoint_every.map(|s| Checkpoints {
+        every: Duration::from_secs_f64(s),
+        write: &save,
+    });
+    let hooks = Hooks {
+        cancel: &cancel,
+        progress: &progress,
+        checkpoint: every,
+    };
+    let rendered = render(scene, &settings, plan.start, &hooks)?;
     bar.finish_and_clear();
+    if let Some(e) = checkpoint_error
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+    {
+        eprintln!("warning: a periodic checkpoint could not be written: {e:#}");
+    }
 
-    write_image(&rendered.film, &args.output, format)
-        .with_context(|| format!("cannot write {}", args.output.display()))?;
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    if plan.shard.count > 1 {
+        write_film(&plan.output, &rendered.film, &meta)
+            .with_context(|| format!("cannot write {}", plan.output.display()))?;
+    } else {
+        write_image(&rendered.film, &plan.output, plan.format)
+            .with_context(|| format!("cannot write {}", plan.output.display()))?;
+    }
     println!(
         "{}",
-        summary(&args.output, w, h, settings.spp, &rendered.stats)
+        summary(&plan.output, w, h, settings.spp, &rendered.stats)
     );
     if rendered.stats.rays.nonfinite > 0 {
         eprintln!(
@@ -110,14 +129,134 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         );
     }
     if rendered.complete {
-        Ok(ExitCode::SUCCESS)
-    } else {
-        eprintln!(
-            "interrupted: wrote the partial image to {}",
-            args.output.display()
-        );
-        Ok(ExitCode::from(INTERRUPTED))
+        // A finished render needs no checkpoint any more.
+        if plan.checkpoint.is_file() {
+            let _ = std::fs::remove_file(&plan.checkpoint);
+        }
+        return Ok(ExitCode::SUCCESS);
     }
+    write_film(&plan.checkpoint, &rendered.film, &meta)
+        .with_context(|| format!("cannot write the checkpoint {}", plan.checkpoint.display()))?;
+    let (least, most) = rendered.film.sample_range();
+    eprintln!(
+        "interrupted: wrote the partial image to {} ({least}..{most} of {} samples per pixel) and the checkpoint {}; continue with: lucent render --resume {}",
+        plan.output.display(),
+        settings.spp,
+        plan.checkpoint.display(),
+        plan.checkpoint.display()
+    );
+    Ok(ExitCode::from(INTERRUPTED))
+}
+
+fn absolute(p: &Path) -> PathBuf {
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+fn default_checkpoint(output: &Path) -> PathBuf {
+    let mut name = output
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
+    // Not `.exr`: a glob like `part-*.exr` for `lucent merge` must not pick it up.
+    name.push(".checkpoint");
+    output.with_file_name(name)
+}
+
+fn plan_new(args: &RenderArgs) -> anyhow::Result<Plan> {
+    let shard = match &args.shard {
+        Some(spec) => parse_shard(spec)?,
+        None => Shard::default(),
+    };
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("render.png"));
+    let format = output_format(&output, shard)?;
+    let checkpoint = args
+        .checkpoint
+        .clone()
+        .unwrap_or_else(|| default_checkpoint(&output));
+    let job = Job::load(args.scene.as_deref(), &args.overrides)?;
+    Ok(Plan {
+        job,
+        shard,
+        start: None,
+        output,
+        format,
+        checkpoint,
+    })
+}
+
+fn plan_resume(args: &RenderArgs, ckpt: &Path) -> anyhow::Result<Plan> {
+    if args.scene.is_some() || args.overrides != Default::default() || args.shard.is_some() {
+        bail!(
+            "--resume takes the scene and its settings from the checkpoint: give no scene, settings or --shard with it"
+        );
+    }
+    let (film, meta) = read_film(ckpt)?;
+    let overrides = crate::cli::Overrides::from_pairs(&meta.overrides)
+        .map_err(|e| anyhow!("{}: {e}", ckpt.display()))?;
+    let scene = (!meta.scene.is_empty()).then(|| PathBuf::from(&meta.scene));
+    let job = Job::load(scene.as_deref(), &overrides)?;
+    if job.fingerprint() != meta.fingerprint {
+        bail!(
+            "{}: the scene, a mesh file or a setting changed since this checkpoint was written; it cannot be resumed",
+            ckpt.display()
+        );
+    }
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(&meta.output));
+    let format = output_format(&output, meta.shard)?;
+    let checkpoint = args
+        .checkpoint
+        .clone()
+        .unwrap_or_else(|| ckpt.to_path_buf());
+    Ok(Plan {
+        job,
+        shard: meta.shard,
+        start: Some(film),
+        output,
+        format,
+        checkpoint,
+    })
+}
+
+/// The output's format; a shard's output must be a partial film (`.exr`).
+fn output_format(output: &Path, shard: Shard) -> anyhow::Result<ImageFormat> {
+    // Checked before the scene is read or rendered.
+    let format = ImageFormat::from_path(output)?;
+    if shard.count > 1 && format != ImageFormat::Exr {
+        bail!(
+            "a shard's output is a partial film for `lucent merge`: use -o PART.exr (got {})",
+            output.display()
+        );
+    }
+    Ok(format)
+}
+
+/// `I/N`, or `auto/N` with `I` from the batch system's task index.
+pub fn parse_shard(spec: &str) -> anyhow::Result<Shard> {
+    let bad = || anyhow!("--shard must be I/N with 0 ≤ I < N, or auto/N; got `{spec}`");
+    let (i, n) = spec.split_once('/').ok_or_else(bad)?;
+    let count: u32 = n.parse().map_err(|_| bad())?;
+    let index: u32 = if i == "auto" {
+        let (var, value) = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"]
+            .iter()
+            .find_map(|v| std::env::var(v).ok().map(|x| (*v, x)))
+            .ok_or_else(|| anyhow!("--shard auto/{n}: neither $SLURM_ARRAY_TASK_ID nor $JOB_COMPLETION_INDEX is set"))?;
+        value
+            .trim()
+            .parse()
+            .map_err(|_| anyhow!("--shard auto/{n}: ${var} is `{value}`, not a number"))?
+    } else {
+        i.parse().map_err(|_| bad())?
+    };
+    if count == 0 || index >= count {
+        return Err(bad());
+    }
+    Ok(Shard { index, count })
 }
 
 /// The one statistics line printed after a render.
@@ -135,4 +274,17 @@ fn summary(output: &Path, w: u32, h: u32, spp: u32, s: &RenderStats) -> String {
         s.mrays_per_second(),
         s.threads
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shard_specs() {
+        assert_eq!(parse_shard("1/4").unwrap(), Shard { index: 1, count: 4 });
+        for bad in ["4/4", "1/0", "x/3", "2", "-1/3"] {
+            assert!(parse_shard(bad).is_err(), "{bad}");
+        }
+    }
 }

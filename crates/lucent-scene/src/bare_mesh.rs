@@ -3,7 +3,8 @@
 
 use crate::build::Loaded;
 use crate::error::LoadError;
-use crate::mesh_file::read_mesh;
+use crate::hash::Fingerprint;
+use crate::mesh_file::read_mesh_fingerprinted;
 use glam::Vec3;
 use lucent::Rgb;
 use lucent::accel::AccelKind;
@@ -24,7 +25,8 @@ pub fn bare_mesh_scene(
     height: u32,
     accel: AccelKind,
 ) -> Result<Loaded, LoadError> {
-    let mesh = read_mesh(path)?;
+    let mut inputs = Fingerprint::default();
+    let mesh = read_mesh_fingerprinted(path, &mut inputs)?;
     let bounds = mesh.bounds();
     if bounds.is_empty() {
         return Err(LoadError::file(path, "the mesh has no vertices"));
@@ -64,5 +66,6 @@ pub fn bare_mesh_scene(
     Ok(Loaded {
         scene,
         settings: RenderSettings::default(),
+        inputs: inputs.value(),
     })
 }

@@ -6,7 +6,8 @@ use crate::desc::light::FalloffName;
 use crate::desc::settings::TriangleTestName;
 use crate::desc::{IntegratorName, LightKind, ObjectDesc, ObjectKind, SceneDesc};
 use crate::error::{LoadError, Source};
-use crate::mesh_file::read_mesh;
+use crate::hash::Fingerprint;
+use crate::mesh_file::read_mesh_fingerprinted;
 use glam::{Affine3A, Mat3, Vec3};
 use lucent::Rgb;
 use lucent::accel::AccelKind;
@@ -42,11 +43,15 @@ pub struct Loaded {
     pub scene: Scene,
     /// Integrator, samples and seed from the file (threads: all).
     pub settings: RenderSettings,
+    /// Fingerprint of the inputs: the scene text and every mesh file read.
+    pub inputs: u64,
 }
 
 /// Builds `desc`, read from `source`; mesh files are found relative to `base_dir`.
 pub fn build(desc: &SceneDesc, source: &Source, base_dir: &Path) -> Result<Loaded, LoadError> {
     let settings = render_settings(desc, source)?;
+    let mut inputs = Fingerprint::default();
+    inputs.add(source.text.as_bytes());
     let cam = desc.camera.get_ref();
     let (width, height) = (*desc.image.width.get_ref(), *desc.image.height.get_ref());
     let camera = Camera::new(cam.eye.0, cam.look_at.0, cam.up.0, cam.fov.0, width, height)
@@ -115,13 +120,25 @@ pub fn build(desc: &SceneDesc, source: &Source, base_dir: &Path) -> Result<Loade
                 format!("unknown material `{name}` ({hint})"),
             ));
         };
-        add_object(&mut builder, &mut meshes, o, material, source, base_dir)?;
+        add_object(
+            &mut builder,
+            &mut meshes,
+            &mut inputs,
+            o,
+            material,
+            source,
+            base_dir,
+        )?;
     }
 
     let scene = builder
         .build()
         .map_err(|e| LoadError::file(source.path, e.to_string()))?;
-    Ok(Loaded { scene, settings })
+    Ok(Loaded {
+        scene,
+        settings,
+        inputs: inputs.value(),
+    })
 }
 
 fn check(source: &Source, span: Range<usize>, ok: bool, message: &str) -> Result<(), LoadError> {
@@ -261,9 +278,11 @@ fn light(l: &Spanned<crate::desc::LightDesc>, source: &Source) -> Result<Light, 
 /// Meshes already stored, by canonical file path.
 type MeshCache = HashMap<std::path::PathBuf, u32>;
 
+#[allow(clippy::too_many_arguments)]
 fn add_object(
     builder: &mut SceneBuilder,
     meshes: &mut MeshCache,
+    inputs: &mut Fingerprint,
     o: &Spanned<ObjectDesc>,
     material: u32,
     source: &Source,
@@ -363,7 +382,7 @@ fn add_object(
             let mesh = match meshes.get(&key) {
                 Some(&id) => id,
                 None => {
-                    let id = builder.add_mesh(read_mesh(&path)?);
+                    let id = builder.add_mesh(read_mesh_fingerprinted(&path, inputs)?);
                     meshes.insert(key, id);
                     id
                 }

@@ -11,6 +11,7 @@ pub mod bare_mesh;
 pub mod build;
 pub mod desc;
 pub mod error;
+pub mod hash;
 pub mod mesh_file;
 pub mod obj;
 pub mod ply;

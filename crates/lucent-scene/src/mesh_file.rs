@@ -1,6 +1,7 @@
 //! Mesh files by extension: `.obj` (Wavefront) and `.ply` (Stanford).
 
 use crate::error::LoadError;
+use crate::hash::Fingerprint;
 use lucent::shape::Mesh;
 use std::path::Path;
 
@@ -16,22 +17,38 @@ pub fn is_mesh_file(path: &Path) -> bool {
 
 /// The positions and triangles of the mesh file at `path`.
 pub fn read_mesh(path: &Path) -> Result<Mesh, LoadError> {
+    read_mesh_fingerprinted(path, &mut Fingerprint::default())
+}
+
+/// [`read_mesh`], adding the file's bytes to `fingerprint`.
+pub fn read_mesh_fingerprinted(
+    path: &Path,
+    fingerprint: &mut Fingerprint,
+) -> Result<Mesh, LoadError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("obj") => crate::obj::read_obj(path).map(|m| Mesh {
-            positions: m.positions,
-            triangles: m.triangles,
-        }),
-        Some("ply") => crate::ply::read_ply(path).map(|m| Mesh {
-            positions: m.positions,
-            triangles: m.triangles,
-        }),
-        _ => Err(LoadError::file(
+    if !matches!(ext.as_deref(), Some("obj" | "ply")) {
+        return Err(LoadError::file(
             path,
             "unknown mesh format (use .obj or .ply)",
-        )),
+        ));
+    }
+    let bytes = std::fs::read(path)
+        .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
+    fingerprint.add(&bytes);
+    if ext.as_deref() == Some("obj") {
+        let m = crate::obj::parse_obj(&String::from_utf8_lossy(&bytes), path)?;
+        Ok(Mesh {
+            positions: m.positions,
+            triangles: m.triangles,
+        })
+    } else {
+        let m = crate::ply::parse_ply(&bytes, path)?;
+        Ok(Mesh {
+            positions: m.positions,
+            triangles: m.triangles,
+        })
     }
 }

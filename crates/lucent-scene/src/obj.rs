@@ -22,8 +22,7 @@ pub struct ObjMesh {
 pub fn read_obj(path: &Path) -> Result<ObjMesh, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
-    let text = String::from_utf8_lossy(&bytes);
-    parse_obj(&text, path)
+    parse_obj(&String::from_utf8_lossy(&bytes), path)
 }
 
 /// Parses OBJ text; `path` names it in errors.

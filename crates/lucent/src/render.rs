@@ -1,8 +1,17 @@
-//! The render driver: threads, progress, cancellation and statistics.
+//! The render driver: threads, progress, cancellation, checkpoints, shards and statistics.
 //!
 //! Tiles from the schedule are traced in parallel on a rayon pool of the requested size. Each
 //! sample's position comes from [`crate::sampling`], a pure function of (seed, pixel, sample),
-//! so the image is the same for any number of threads and any tile order.
+//! and each pixel's samples are added in the order of their indices, so the image is the same,
+//! bit for bit, for any number of threads, any tile order, a render stopped and resumed, or
+//! one split into shards.
+//!
+//! **Shards** split the work by tiles: shard `i` of `n` renders the tiles whose index (in
+//! reading order) is `i` modulo `n`, all of their samples. Each pixel is therefore rendered
+//! entirely by one shard, and shards merge exactly by adding their films.
+//!
+//! **Resuming** starts from a film that already holds some samples per pixel and adds the
+//! missing ones, from the next sample index on.
 
 use crate::film::Film;
 use crate::integrator::{Integrator, RayStats};
@@ -15,6 +24,29 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 use thiserror::Error;
 
+/// Which share of the work a render does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, `0..count`.
+    pub index: u32,
+    /// How many shards the work is split into (at least 1).
+    pub count: u32,
+}
+
+impl Default for Shard {
+    /// The whole image.
+    fn default() -> Self {
+        Self { index: 0, count: 1 }
+    }
+}
+
+impl Shard {
+    /// True when tile `i` (in reading order) belongs to this shard.
+    pub fn owns(&self, tile: usize) -> bool {
+        tile % self.count.max(1) as usize == self.index as usize
+    }
+}
+
 /// How to render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -26,8 +58,10 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Worker threads; 0 uses every core.
     pub threads: usize,
-    /// Side of the square tiles handed to threads, in pixels.
+    /// Side of the square tiles handed to threads, in pixels (also the unit of shards).
     pub tile_size: u32,
+    /// The share of the work to do.
+    pub shard: Shard,
 }
 
 impl Default for RenderSettings {
@@ -38,6 +72,7 @@ impl Default for RenderSettings {
             seed: 0,
             threads: 0,
             tile_size: 16,
+            shard: Shard::default(),
         }
     }
 }
@@ -47,7 +82,7 @@ impl Default for RenderSettings {
 pub struct RenderStats {
     /// Rays by kind, and accelerator work.
     pub rays: RayStats,
-    /// Samples taken (camera rays).
+    /// Samples taken (camera rays) in this run.
     pub samples: u64,
     /// Wall-clock time of the render.
     pub elapsed: Duration,
@@ -65,11 +100,11 @@ impl RenderStats {
 /// A finished (or interrupted) render.
 #[derive(Clone, Debug)]
 pub struct Rendered {
-    /// The image's sums and weights.
+    /// The image's sums, weights and sample counts.
     pub film: Film,
     /// What it cost.
     pub stats: RenderStats,
-    /// False when cancelled before every pixel got its samples.
+    /// False when cancelled before every pixel of the shard got its samples.
     pub complete: bool,
 }
 
@@ -84,21 +119,63 @@ pub enum RenderError {
         /// The cause.
         source: rayon::ThreadPoolBuildError,
     },
+    /// The film to resume from does not fit the render.
+    #[error(
+        "the film to resume is {0}×{1} pixels with up to {2} samples; the render is {3}×{4} with {5}"
+    )]
+    ResumeMismatch(u32, u32, u32, u32, u32, u32),
 }
 
-/// Renders `scene` with `settings`.
+/// The caller's hooks into a render: cancellation, progress and checkpoints.
+pub struct Hooks<'a> {
+    /// Set it to stop the render within one sample per thread.
+    pub cancel: &'a AtomicBool,
+    /// Called from worker threads as work finishes, with (samples done, samples to do), both
+    /// counting only this run's work.
+    pub progress: &'a (dyn Fn(u64, u64) + Sync),
+    /// Periodic copies of the film, for crash safety.
+    pub checkpoint: Option<Checkpoints<'a>>,
+}
+
+/// Called at most every `every` with a copy of the film (every pixel's samples so far, each
+/// finished tile stored).
+pub struct Checkpoints<'a> {
+    /// The shortest time between two copies.
+    pub every: Duration,
+    /// Receives each copy.
+    pub write: &'a (dyn Fn(&Film) + Sync),
+}
+
+/// Renders `scene` with `settings`, starting from `start` (a film from an earlier, stopped run
+/// of the same scene and settings) or from nothing.
 ///
-/// `progress(done, total)` is called from worker threads as pixels finish. Setting `cancel`
-/// stops the render within one pixel per thread; the film then holds every pixel
-/// finished so far, and `complete` is false.
+/// Setting `hooks.cancel` stops the render within one sample per thread; the film then holds
+/// every sample taken so far (a pixel may be part-way), and `complete` is false.
 pub fn render(
     scene: &Scene,
     settings: &RenderSettings,
-    cancel: &AtomicBool,
-    progress: &(dyn Fn(u64, u64) + Sync),
+    start: Option<Film>,
+    hooks: &Hooks,
 ) -> Result<Rendered, RenderError> {
-    let start = Instant::now();
+    let begin = Instant::now();
     let (width, height) = (scene.camera.width(), scene.camera.height());
+    let film = match start {
+        Some(f) => {
+            let (_, most) = f.sample_range();
+            if (f.width(), f.height()) != (width, height) || most > settings.spp {
+                return Err(RenderError::ResumeMismatch(
+                    f.width(),
+                    f.height(),
+                    most,
+                    width,
+                    height,
+                    settings.spp,
+                ));
+            }
+            f
+        }
+        None => Film::new(width, height),
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .build()
@@ -107,34 +184,63 @@ pub fn render(
             source,
         })?;
     let threads = pool.current_num_threads();
-    let film = Mutex::new(Film::new(width, height));
+
+    let work: Vec<Tile> = tiles(width, height, settings.tile_size)
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| settings.shard.owns(*i))
+        .map(|(_, t)| t)
+        .collect();
+    let missing = |t: &Tile| -> u64 {
+        let mut n = 0;
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                n += u64::from(settings.spp - film.samples(x, y));
+            }
+        }
+        n
+    };
+    let total: u64 = work.iter().map(missing).sum();
+
+    let film = Mutex::new(film);
     let stats = Mutex::new(RayStats::default());
-    let total = u64::from(width) * u64::from(height);
     let done = AtomicU64::new(0);
+    let last_checkpoint = Mutex::new(Instant::now());
 
     pool.install(|| {
-        tiles(width, height, settings.tile_size)
-            .par_iter()
-            .for_each(|tile| {
-                if cancel.load(Ordering::Relaxed) {
-                    return;
+        work.par_iter().for_each(|tile| {
+            if hooks.cancel.load(Ordering::Relaxed) {
+                return;
+            }
+            let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
+            let mut part = lock(&film).region(tile.x0, tile.y0, w, h);
+            let (tile_stats, samples) = render_tile(scene, settings, tile, &mut part, hooks.cancel);
+            lock(&film).store_region(&part, tile.x0, tile.y0);
+            *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
+            (hooks.progress)(done.fetch_add(samples, Ordering::Relaxed) + samples, total);
+            if let Some(c) = &hooks.checkpoint {
+                // One thread at a time, and only when due; the copy is taken under the film's
+                // lock and written outside it.
+                if let Ok(mut last) = last_checkpoint.try_lock()
+                    && last.elapsed() >= c.every
+                {
+                    let snapshot = lock(&film).clone();
+                    (c.write)(&snapshot);
+                    *last = Instant::now();
                 }
-                let (tile_film, tile_stats, pixels) = render_tile(scene, settings, tile, cancel);
-                let mut f = film.lock().unwrap_or_else(|e| e.into_inner());
-                f.merge_region(&tile_film, tile.x0, tile.y0);
-                drop(f);
-                *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
-                progress(done.fetch_add(pixels, Ordering::Relaxed) + pixels, total);
-            });
+            }
+        });
     });
 
     let rays = stats.into_inner().unwrap_or_else(|e| e.into_inner());
     let film = film.into_inner().unwrap_or_else(|e| e.into_inner());
-    let complete = done.load(Ordering::Relaxed) == total;
+    let complete = work
+        .iter()
+        .all(|t| (t.y0..t.y1).all(|y| (t.x0..t.x1).all(|x| film.samples(x, y) == settings.spp)));
     let stats = RenderStats {
         rays,
         samples: rays.camera,
-        elapsed: start.elapsed(),
+        elapsed: begin.elapsed(),
         threads,
     };
     Ok(Rendered {
@@ -144,37 +250,41 @@ pub fn render(
     })
 }
 
-/// Traces every sample of `tile` into a film of the tile's size; stops between pixels when
-/// cancelled. Returns the film, the rays traced and the pixels finished.
+/// The film, even if a thread panicked while holding it (its data is still whole pixels).
+fn lock(m: &Mutex<Film>) -> std::sync::MutexGuard<'_, Film> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Adds the missing samples of every pixel of `tile` to `part` (the tile's region of the film);
+/// stops between samples when cancelled. Returns the rays traced and the samples taken.
 fn render_tile(
     scene: &Scene,
     settings: &RenderSettings,
     tile: &Tile,
+    part: &mut Film,
     cancel: &AtomicBool,
-) -> (Film, RayStats, u64) {
-    let mut film = Film::new(tile.x1 - tile.x0, tile.y1 - tile.y0);
+) -> (RayStats, u64) {
     let mut stats = RayStats::default();
-    let mut pixels = 0;
+    let mut taken = 0;
     let width = u64::from(scene.camera.width());
-    'rows: for y in tile.y0..tile.y1 {
+    for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
-            if cancel.load(Ordering::Relaxed) {
-                break 'rows;
-            }
             let pixel = u64::from(y) * width + u64::from(x);
-            for s in 0..settings.spp {
+            let (px, py) = (x - tile.x0, y - tile.y0);
+            for s in part.samples(px, py)..settings.spp {
+                if cancel.load(Ordering::Relaxed) {
+                    return (stats, taken);
+                }
                 let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
                 let ray = scene.camera.ray(x as f32 + dx, y as f32 + dy);
                 stats.camera += 1;
                 let value = settings.integrator.radiance(scene, &ray, &mut stats);
-                if value.is_finite() {
-                    film.add(x - tile.x0, y - tile.y0, value, 1.0);
-                } else {
-                    stats.nonfinite += 1;
-                }
+                let finite = value.is_finite();
+                stats.nonfinite += u64::from(!finite);
+                part.add_sample(px, py, finite.then_some(value), 1.0);
+                taken += 1;
             }
-            pixels += 1;
         }
     }
-    (film, stats, pixels)
+    (stats, taken)
 }

@@ -1,23 +1,43 @@
-//! The film: per-pixel running sums of radiance and of sample weights, in linear RGB.
+//! The film: per pixel, the running sum of radiance, the sum of sample weights, and the number
+//! of samples taken, in linear RGB.
 //!
-//! Films of the same scene and settings merge by adding their sums; tone mapping and encoding
-//! happen only on output ([`tonemap`]).
+//! A pixel's samples are added in the order of their indices, so a render stopped and resumed,
+//! or split over machines by pixels, gives the same bits as one done at once. Films of disjoint
+//! pixels merge by adding (each pixel's values come from one film, plus zeros); tone mapping and
+//! encoding happen only on output ([`tonemap`]).
 
 pub mod tonemap;
 
 use crate::Rgb;
 
-/// Linear radiance sums and weights for a `width × height` image, row 0 at the top.
+/// Linear radiance sums, weights and sample counts for a `width × height` image, row 0 at the
+/// top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     width: u32,
     height: u32,
     sums: Vec<Rgb>,
     weights: Vec<f32>,
+    samples: Vec<u32>,
+}
+
+/// A film's raw channels, for files (partial films, checkpoints).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FilmData {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Radiance sums, row by row from the top.
+    pub sums: Vec<[f32; 3]>,
+    /// Weight sums.
+    pub weights: Vec<f32>,
+    /// Samples taken (NaN or infinite samples count, with no weight).
+    pub samples: Vec<u32>,
 }
 
 impl Film {
-    /// An empty film (all sums and weights zero).
+    /// An empty film (no samples).
     pub fn new(width: u32, height: u32) -> Self {
         let n = width as usize * height as usize;
         Self {
@@ -25,6 +45,34 @@ impl Film {
             height,
             sums: vec![Rgb::BLACK; n],
             weights: vec![0.0; n],
+            samples: vec![0; n],
+        }
+    }
+
+    /// The film held by `data`, or `None` when its arrays do not match its size.
+    pub fn from_data(data: FilmData) -> Option<Self> {
+        let n = data.width as usize * data.height as usize;
+        if data.sums.len() != n || data.weights.len() != n || data.samples.len() != n {
+            return None;
+        }
+        let sums = data.sums.into_iter().map(Rgb::from).collect();
+        Some(Self {
+            width: data.width,
+            height: data.height,
+            sums,
+            weights: data.weights,
+            samples: data.samples,
+        })
+    }
+
+    /// The raw channels.
+    pub fn to_data(&self) -> FilmData {
+        FilmData {
+            width: self.width,
+            height: self.height,
+            sums: self.sums.iter().map(|s| s.to_array()).collect(),
+            weights: self.weights.clone(),
+            samples: self.samples.clone(),
         }
     }
 
@@ -42,11 +90,26 @@ impl Film {
         y as usize * self.width as usize + x as usize
     }
 
-    /// Adds a sample of radiance `value` with weight `weight` to pixel `(x, y)`.
-    pub fn add(&mut self, x: u32, y: u32, value: Rgb, weight: f32) {
+    /// Adds the next sample of pixel `(x, y)`: its radiance with weight `weight`, or `None` for a
+    /// sample that came out NaN or infinite (counted, not added).
+    pub fn add_sample(&mut self, x: u32, y: u32, value: Option<Rgb>, weight: f32) {
         let i = self.index(x, y);
-        self.sums[i] += value * weight;
-        self.weights[i] += weight;
+        if let Some(v) = value {
+            self.sums[i] += v * weight;
+            self.weights[i] += weight;
+        }
+        self.samples[i] += 1;
+    }
+
+    /// Samples taken at pixel `(x, y)` so far.
+    pub fn samples(&self, x: u32, y: u32) -> u32 {
+        self.samples[self.index(x, y)]
+    }
+
+    /// Fewest and most samples over all pixels (`(0, 0)` for an empty image).
+    pub fn sample_range(&self) -> (u32, u32) {
+        let min = self.samples.iter().copied().min().unwrap_or(0);
+        (min, self.samples.iter().copied().max().unwrap_or(0))
     }
 
     /// The pixel's estimate: the weighted mean of its samples, black when it has none.
@@ -73,11 +136,32 @@ impl Film {
             .collect()
     }
 
-    /// Adds `part`, a film covering the region whose top-left pixel is `(x0, y0)`, into this one.
+    /// A copy of the region `[x0, x0 + w) × [y0, y0 + h)`.
     ///
     /// # Panics
     /// If the region does not fit inside this film.
-    pub fn merge_region(&mut self, part: &Film, x0: u32, y0: u32) {
+    pub fn region(&self, x0: u32, y0: u32, w: u32, h: u32) -> Film {
+        assert!(
+            x0 + w <= self.width && y0 + h <= self.height,
+            "region outside the film"
+        );
+        let mut part = Film::new(w, h);
+        for y in 0..h {
+            for x in 0..w {
+                let (src, dst) = (self.index(x0 + x, y0 + y), part.index(x, y));
+                part.sums[dst] = self.sums[src];
+                part.weights[dst] = self.weights[src];
+                part.samples[dst] = self.samples[src];
+            }
+        }
+        part
+    }
+
+    /// Writes `part` over the region whose top-left pixel is `(x0, y0)`.
+    ///
+    /// # Panics
+    /// If the region does not fit inside this film.
+    pub fn store_region(&mut self, part: &Film, x0: u32, y0: u32) {
         assert!(
             x0 + part.width <= self.width && y0 + part.height <= self.height,
             "region outside the film"
@@ -85,13 +169,14 @@ impl Film {
         for y in 0..part.height {
             for x in 0..part.width {
                 let (src, dst) = (part.index(x, y), self.index(x0 + x, y0 + y));
-                self.sums[dst] += part.sums[src];
-                self.weights[dst] += part.weights[src];
+                self.sums[dst] = part.sums[src];
+                self.weights[dst] = part.weights[src];
+                self.samples[dst] = part.samples[src];
             }
         }
     }
 
-    /// Adds another film of the same size into this one.
+    /// Adds another film of the same size into this one (sums, weights and sample counts).
     ///
     /// # Panics
     /// If the sizes differ; callers check that their films come from the same render.
@@ -107,6 +192,9 @@ impl Film {
         for (a, b) in self.weights.iter_mut().zip(&other.weights) {
             *a += *b;
         }
+        for (a, b) in self.samples.iter_mut().zip(&other.samples) {
+            *a += *b;
+        }
     }
 }
 
@@ -117,21 +205,39 @@ mod tests {
     #[test]
     fn a_pixel_is_the_mean_of_its_samples() {
         let mut f = Film::new(2, 1);
-        f.add(1, 0, Rgb::gray(1.0), 1.0);
-        f.add(1, 0, Rgb::gray(3.0), 1.0);
+        f.add_sample(1, 0, Some(Rgb::gray(1.0)), 1.0);
+        f.add_sample(1, 0, Some(Rgb::gray(3.0)), 1.0);
+        f.add_sample(1, 0, None, 1.0);
         assert_eq!(f.pixel(1, 0), Rgb::gray(2.0));
+        assert_eq!(f.samples(1, 0), 3);
         assert_eq!(f.pixel(0, 0), Rgb::BLACK);
         assert_eq!(f.to_linear_rgb(), vec![[0.0; 3], [2.0; 3]]);
+        assert_eq!(f.sample_range(), (0, 3));
     }
 
     #[test]
     fn merged_films_equal_one_film_with_all_samples() {
         let (mut a, mut b, mut all) = (Film::new(1, 1), Film::new(1, 1), Film::new(1, 1));
-        a.add(0, 0, Rgb::gray(1.0), 1.0);
-        b.add(0, 0, Rgb::gray(4.0), 1.0);
-        all.add(0, 0, Rgb::gray(1.0), 1.0);
-        all.add(0, 0, Rgb::gray(4.0), 1.0);
+        a.add_sample(0, 0, Some(Rgb::gray(1.0)), 1.0);
+        b.add_sample(0, 0, Some(Rgb::gray(4.0)), 1.0);
+        all.add_sample(0, 0, Some(Rgb::gray(1.0)), 1.0);
+        all.add_sample(0, 0, Some(Rgb::gray(4.0)), 1.0);
         a.merge(&b);
         assert_eq!(a, all);
+    }
+
+    #[test]
+    fn regions_copy_out_and_back_and_data_round_trips() {
+        let mut f = Film::new(4, 3);
+        f.add_sample(2, 1, Some(Rgb::new(1.0, 2.0, 3.0)), 0.5);
+        let part = f.region(1, 1, 2, 2);
+        assert_eq!(part.samples(1, 0), 1);
+        let mut g = Film::new(4, 3);
+        g.store_region(&part, 1, 1);
+        assert_eq!(g, f);
+        assert_eq!(Film::from_data(f.to_data()), Some(f.clone()));
+        let mut bad = f.to_data();
+        bad.samples.pop();
+        assert_eq!(Film::from_data(bad), None);
     }
 }

@@ -199,6 +199,20 @@ impl Scene {
         out
     }
 
+    /// Bytes of the geometry itself: vertex and index arrays, spheres, planes, instances.
+    pub fn geometry_bytes(&self) -> usize {
+        let meshes: usize = self
+            .meshes
+            .iter()
+            .map(|m| m.mesh.positions.len() * 12 + m.mesh.triangles.len() * 12)
+            .sum();
+        meshes
+            + self.spheres.len() * size_of::<(Sphere, ObjectTag)>()
+            + self.planes.len() * size_of::<(Plane, ObjectTag)>()
+            + self.instances.len() * size_of::<(Instance, ObjectTag)>()
+            + self.primitives.len() * size_of::<Primitive>()
+    }
+
     /// The ray–triangle test in use.
     pub fn triangle_test(&self) -> TriangleTest {
         self.triangle_test

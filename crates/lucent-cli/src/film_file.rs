@@ -1,0 +1,287 @@
+//! Partial films and checkpoints: a film's raw sums, weights and sample counts in an OpenEXR
+//! file, with what it belongs to in the header.
+//!
+//! Channels: `sum.R`, `sum.G`, `sum.B` and `weight` (32-bit float), `samples` (32-bit
+//! unsigned). Header attributes (text, prefixed `lucent.`): `fingerprint` (scene inputs and
+//! settings), `shard` (`I/N`), `spp`, `scene` (the scene file, empty for the built-in one),
+//! `overrides` (the command line's settings), `output` (where the final image goes), and
+//! `checksum` (of the pixel data, so a damaged file is refused rather than resumed). The same
+//! format serves shards (`--shard`, merged by `lucent merge`) and checkpoints (`--resume`).
+
+use anyhow::{Context, anyhow, bail};
+use exr::prelude::*;
+use lucent::film::{Film, FilmData};
+use lucent::render::Shard;
+use std::path::Path;
+
+/// What a film file belongs to.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FilmMeta {
+    /// Fingerprint of the scene's inputs and the settings that shape the image.
+    pub fingerprint: String,
+    /// The share of the work it holds.
+    pub shard: Shard,
+    /// Samples per pixel of the finished render.
+    pub spp: u32,
+    /// The scene file, or empty for the built-in default scene.
+    pub scene: String,
+    /// The command line's settings, as `key=value` pairs separated by `;`.
+    pub overrides: String,
+    /// Where the final image goes.
+    pub output: String,
+}
+
+const FIELDS: [&str; 6] = [
+    "fingerprint",
+    "shard",
+    "spp",
+    "scene",
+    "overrides",
+    "output",
+];
+
+impl FilmMeta {
+    fn fields(&self) -> [String; 6] {
+        [
+            self.fingerprint.clone(),
+            format!("{}/{}", self.shard.index, self.shard.count),
+            self.spp.to_string(),
+            self.scene.clone(),
+            self.overrides.clone(),
+            self.output.clone(),
+        ]
+    }
+}
+
+/// Bytes outside printable ASCII (and `%`) as `%XX`: EXR text attributes hold Latin-1 only.
+fn escape(s: &str) -> String {
+    s.bytes()
+        .map(|b| {
+            if (0x20..0x7f).contains(&b) && b != b'%' {
+                (b as char).to_string()
+            } else {
+                format!("%{b:02X}")
+            }
+        })
+        .collect()
+}
+
+fn unescape(s: &str) -> Option<String> {
+    let mut out = Vec::new();
+    let b = s.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' {
+            out.push(u8::from_str_radix(s.get(i + 1..i + 3)?, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(b[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// Hex fingerprint of every bit of the film's data.
+fn checksum(data: &FilmData) -> String {
+    let mut f = lucent_scene::hash::Fingerprint::default();
+    f.add(&data.width.to_le_bytes());
+    f.add(&data.height.to_le_bytes());
+    let floats = data.sums.iter().flatten().chain(&data.weights);
+    f.add(&floats.flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>());
+    f.add(
+        &data
+            .samples
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>(),
+    );
+    format!("{:016x}", f.value())
+}
+
+/// Writes `film` and `meta` to `path` (atomically: a temporary file, then a rename).
+pub fn write_film(path: &Path, film: &Film, meta: &FilmMeta) -> anyhow::Result<()> {
+    let data = film.to_data();
+    let size = (data.width as usize, data.height as usize);
+    let channel = |name: &str, f: &dyn Fn(usize) -> f32| {
+        AnyChannel::new(
+            name,
+            FlatSamples::F32((0..data.weights.len()).map(f).collect()),
+        )
+    };
+    let channels = AnyChannels::sort(SmallVec::from_vec(vec![
+        channel("sum.R", &|i| data.sums[i][0]),
+        channel("sum.G", &|i| data.sums[i][1]),
+        channel("sum.B", &|i| data.sums[i][2]),
+        channel("weight", &|i| data.weights[i]),
+        AnyChannel::new("samples", FlatSamples::U32(data.samples.clone())),
+    ]));
+    let mut attributes = LayerAttributes::named("lucent film");
+    for (key, value) in FIELDS.iter().zip(meta.fields()) {
+        let text =
+            Text::new_or_none(escape(&value)).ok_or_else(|| anyhow!("cannot store `{value}`"))?;
+        attributes.other.insert(
+            Text::new_or_panic(format!("lucent.{key}")),
+            AttributeValue::Text(text),
+        );
+    }
+    let sum = Text::new_or_panic(checksum(&data));
+    attributes.other.insert(
+        Text::new_or_panic("lucent.checksum"),
+        AttributeValue::Text(sum),
+    );
+    let image = Image::from_layer(Layer::new(
+        size,
+        attributes,
+        Encoding::FAST_LOSSLESS,
+        channels,
+    ));
+    crate::output::write_atomically(path, |file| {
+        image.write().to_buffered(file).map_err(|e| anyhow!("{e}"))
+    })
+}
+
+/// Reads a film file written by [`write_film`], checking that it is one.
+pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
+    let not_ours = |why: &str| {
+        anyhow!(
+            "{}: not a lucent partial film or checkpoint ({why})",
+            path.display()
+        )
+    };
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
+    let layer = &image.layer_data;
+    let attr = |key: &str| -> anyhow::Result<String> {
+        match layer
+            .attributes
+            .other
+            .get(&Text::new_or_panic(format!("lucent.{key}")))
+        {
+            Some(AttributeValue::Text(t)) => {
+                unescape(&t.to_string()).ok_or_else(|| not_ours(&format!("a garbled `{key}`")))
+            }
+            _ => Err(not_ours(&format!("no `lucent.{key}` attribute"))),
+        }
+    };
+    let shard = attr("shard")?;
+    let (index, count) = shard
+        .split_once('/')
+        .ok_or_else(|| not_ours("a garbled shard"))?;
+    let shard = Shard {
+        index: index.parse().map_err(|_| not_ours("a garbled shard"))?,
+        count: count.parse().map_err(|_| not_ours("a garbled shard"))?,
+    };
+    if shard.count == 0 || shard.index >= shard.count {
+        return Err(not_ours("a shard index out of range"));
+    }
+    let meta = FilmMeta {
+        fingerprint: attr("fingerprint")?,
+        shard,
+        spp: attr("spp")?
+            .parse()
+            .map_err(|_| not_ours("a garbled spp"))?,
+        scene: attr("scene")?,
+        overrides: attr("overrides")?,
+        output: attr("output")?,
+    };
+    let find = |name: &str| {
+        layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name == Text::new_or_panic(name))
+    };
+    let floats = |name: &str| -> anyhow::Result<Vec<f32>> {
+        match find(name).map(|c| &c.sample_data) {
+            Some(FlatSamples::F32(v)) => Ok(v.clone()),
+            _ => Err(not_ours(&format!("no float channel `{name}`"))),
+        }
+    };
+    let (r, g, b, weights) = (
+        floats("sum.R")?,
+        floats("sum.G")?,
+        floats("sum.B")?,
+        floats("weight")?,
+    );
+    let samples = match find("samples").map(|c| &c.sample_data) {
+        Some(FlatSamples::U32(v)) => v.clone(),
+        _ => return Err(not_ours("no `samples` channel")),
+    };
+    let size = layer.size;
+    let data = FilmData {
+        width: u32::try_from(size.0).context("width")?,
+        height: u32::try_from(size.1).context("height")?,
+        sums: r
+            .iter()
+            .zip(&g)
+            .zip(&b)
+            .map(|((r, g), b)| [*r, *g, *b])
+            .collect(),
+        weights,
+        samples,
+    };
+    if attr("checksum")? != checksum(&data) {
+        bail!(
+            "{}: corrupted: the pixel data does not match its checksum",
+            path.display()
+        );
+    }
+    if data.samples.iter().any(|&s| s > meta.spp) {
+        bail!(
+            "{}: corrupted: a pixel has more samples than the render's {}",
+            path.display(),
+            meta.spp
+        );
+    }
+    if data.weights.iter().any(|w| !(w.is_finite() && *w >= 0.0))
+        || data.sums.iter().flatten().any(|v| !v.is_finite())
+    {
+        bail!(
+            "{}: corrupted: sums or weights that are not finite",
+            path.display()
+        );
+    }
+    let film = Film::from_data(data).ok_or_else(|| not_ours("channels of different sizes"))?;
+    Ok((film, meta))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escaping_round_trips() {
+        for s in ["plain", "a%b", "ünïcode/€", ""] {
+            assert_eq!(unescape(&escape(s)).as_deref(), Some(s));
+        }
+        assert!(escape("€").is_ascii());
+    }
+
+    #[test]
+    fn films_round_trip_exactly() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.exr");
+        let mut film = Film::new(3, 2);
+        film.add_sample(1, 1, Some(lucent::Rgb::new(0.1, 1e-20, 3.5e10)), 1.0);
+        film.add_sample(1, 1, None, 1.0);
+        let meta = FilmMeta {
+            fingerprint: "abc".into(),
+            shard: Shard { index: 1, count: 3 },
+            spp: 4,
+            scene: "scènes/x.toml".into(),
+            overrides: "spp=4;width=3".into(),
+            output: "out.png".into(),
+        };
+        write_film(&path, &film, &meta).unwrap();
+        let (back, back_meta) = read_film(&path).unwrap();
+        assert_eq!(back, film);
+        assert_eq!(back_meta, meta);
+    }
+}

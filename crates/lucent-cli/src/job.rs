@@ -1,0 +1,228 @@
+//! A render job: the scene, the command line's overrides, and the fingerprint that tells
+//! whether two renders (shards, a checkpoint and its resumption) draw the same image.
+
+use crate::cli::{IntegratorArg, Overrides, TriangleTestArg};
+use anyhow::{anyhow, bail};
+use lucent_scene::desc::IntegratorName;
+use lucent_scene::desc::settings::TriangleTestName;
+use lucent_scene::hash::Fingerprint;
+use lucent_scene::{Loaded, SceneFile, Spanned};
+use std::path::{Path, PathBuf};
+
+/// A scene loaded with the command line's settings applied.
+pub struct Job {
+    /// The scene file as given (`None`: the built-in default scene).
+    pub scene_path: Option<PathBuf>,
+    /// The settings given on the command line.
+    pub overrides: Overrides,
+    /// The built scene and its render settings.
+    pub loaded: Loaded,
+}
+
+impl Job {
+    /// Reads and builds the scene at `scene` (or the built-in one) with `overrides` applied.
+    pub fn load(scene: Option<&Path>, overrides: &Overrides) -> anyhow::Result<Self> {
+        let mut file = match scene {
+            Some(p) => SceneFile::read(p)?,
+            None => SceneFile::default_scene(),
+        };
+        apply(&mut file, overrides);
+        let loaded = file.build()?;
+        Ok(Self {
+            scene_path: scene.map(Path::to_path_buf),
+            overrides: overrides.clone(),
+            loaded,
+        })
+    }
+
+    /// Hex fingerprint of the scene's inputs (scene text, mesh files) and of every setting that
+    /// shapes the image: resolution, samples, seed, tile size (the unit of shards), integrator
+    /// and triangle test. Threads and the accelerator change nothing in the image, so they are
+    /// left out.
+    pub fn fingerprint(&self) -> String {
+        let s = &self.loaded.settings;
+        let c = &self.loaded.scene.camera;
+        let settings = format!(
+            "{}x{} spp={} seed={} tile={} {:?} {}",
+            c.width(),
+            c.height(),
+            s.spp,
+            s.seed,
+            s.tile_size,
+            s.integrator,
+            self.loaded.scene.triangle_test().name()
+        );
+        let mut f = Fingerprint::default();
+        f.add(&self.loaded.inputs.to_le_bytes());
+        f.add(settings.as_bytes());
+        format!("{:016x}", f.value())
+    }
+}
+
+/// Film bytes per pixel while rendering: radiance sums (12), weight (4), sample count (4).
+const FILM_BYTES_PER_PIXEL: u64 = 20;
+/// Bytes per pixel while a file is written: the larger of an image (its linear copy, 12, and
+/// encoding, up to 12) and a checkpoint (a copy of the film, 20, and its EXR channels, 20).
+const FILE_BYTES_PER_PIXEL: u64 = 40;
+
+/// The memory a render needs, in bytes.
+#[derive(Clone, Copy, Debug)]
+pub struct Memory {
+    /// Geometry and accelerators (already allocated once the job is loaded).
+    pub scene: u64,
+    /// The film.
+    pub film: u64,
+    /// Writing an image or a checkpoint.
+    pub files: u64,
+}
+
+impl Memory {
+    /// All of it.
+    pub fn total(&self) -> u64 {
+        self.scene + self.film + self.files
+    }
+}
+
+impl Job {
+    /// The memory the render will need.
+    pub fn memory(&self) -> Memory {
+        let scene = &self.loaded.scene;
+        let pixels = u64::from(scene.camera.width()) * u64::from(scene.camera.height());
+        Memory {
+            scene: (scene.accel_report().bytes + scene.geometry_bytes()) as u64,
+            film: pixels * FILM_BYTES_PER_PIXEL,
+            files: pixels * FILE_BYTES_PER_PIXEL,
+        }
+    }
+}
+
+/// The memory the system can still give, from /proc/meminfo (None elsewhere).
+pub fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// An overridden value has no place in the file: errors about it must not point there.
+fn from_flag<T>(v: T) -> Spanned<T> {
+    Spanned::new(0..0, v)
+}
+
+fn apply(file: &mut SceneFile, o: &Overrides) {
+    let d = &mut file.desc;
+    if let Some(w) = o.width {
+        d.image.width = from_flag(w);
+    }
+    if let Some(h) = o.height {
+        d.image.height = from_flag(h);
+    }
+    if let Some(n) = o.spp {
+        d.image.samples = from_flag(n);
+    }
+    if let Some(i) = o.integrator {
+        d.render.integrator = match i {
+            IntegratorArg::Raycast => IntegratorName::Raycast,
+            IntegratorArg::Whitted => IntegratorName::Whitted,
+        };
+    }
+    if let Some(m) = o.max_depth {
+        d.render.max_depth = from_flag(m);
+    }
+    if let Some(s) = o.seed {
+        d.render.seed = s;
+    }
+    if let Some(a) = o.accel {
+        d.render.accelerator = from_flag(a.name().to_string());
+    }
+    if let Some(t) = o.triangle_test {
+        d.render.triangle_test = match t {
+            TriangleTestArg::Watertight => TriangleTestName::Watertight,
+            TriangleTestArg::Projection => TriangleTestName::Projection,
+        };
+    }
+}
+
+impl Overrides {
+    /// The overrides as `key=value` pairs separated by `;` (for checkpoints).
+    pub fn to_pairs(&self) -> String {
+        let mut pairs = Vec::new();
+        let mut put = |k: &str, v: Option<String>| {
+            if let Some(v) = v {
+                pairs.push(format!("{k}={v}"));
+            }
+        };
+        put("width", self.width.map(|v| v.to_string()));
+        put("height", self.height.map(|v| v.to_string()));
+        put("spp", self.spp.map(|v| v.to_string()));
+        put(
+            "integrator",
+            self.integrator.map(|v| format!("{v:?}").to_lowercase()),
+        );
+        put("max_depth", self.max_depth.map(|v| v.to_string()));
+        put("seed", self.seed.map(|v| v.to_string()));
+        put("accel", self.accel.map(|v| v.name().to_string()));
+        put(
+            "triangle_test",
+            self.triangle_test.map(|v| format!("{v:?}").to_lowercase()),
+        );
+        pairs.join(";")
+    }
+
+    /// Reads what [`Overrides::to_pairs`] wrote.
+    pub fn from_pairs(s: &str) -> anyhow::Result<Self> {
+        let mut o = Overrides::default();
+        for pair in s.split(';').filter(|p| !p.is_empty()) {
+            let (k, v) = pair
+                .split_once('=')
+                .ok_or_else(|| anyhow!("a garbled setting `{pair}`"))?;
+            let bad = || anyhow!("a garbled setting `{pair}`");
+            match k {
+                "width" => o.width = Some(v.parse().map_err(|_| bad())?),
+                "height" => o.height = Some(v.parse().map_err(|_| bad())?),
+                "spp" => o.spp = Some(v.parse().map_err(|_| bad())?),
+                "integrator" => {
+                    o.integrator = Some(match v {
+                        "raycast" => IntegratorArg::Raycast,
+                        "whitted" => IntegratorArg::Whitted,
+                        _ => return Err(bad()),
+                    })
+                }
+                "max_depth" => o.max_depth = Some(v.parse().map_err(|_| bad())?),
+                "seed" => o.seed = Some(v.parse().map_err(|_| bad())?),
+                "accel" => o.accel = Some(v.parse().map_err(|_| bad())?),
+                "triangle_test" => {
+                    o.triangle_test = Some(match v {
+                        "watertight" => TriangleTestArg::Watertight,
+                        "projection" => TriangleTestArg::Projection,
+                        _ => return Err(bad()),
+                    })
+                }
+                _ => bail!("an unknown setting `{k}`"),
+            }
+        }
+        Ok(o)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overrides_round_trip() {
+        let o = Overrides {
+            width: Some(10),
+            height: None,
+            spp: Some(4),
+            integrator: Some(IntegratorArg::Raycast),
+            max_depth: Some(2),
+            seed: Some(u64::MAX),
+            accel: Some(lucent::accel::AccelKind::Octree),
+            triangle_test: Some(TriangleTestArg::Projection),
+        };
+        assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
+        assert_eq!(Overrides::from_pairs("").unwrap(), Overrides::default());
+        assert!(Overrides::from_pairs("width=x").is_err());
+    }
+}
