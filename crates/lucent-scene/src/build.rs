@@ -76,23 +76,7 @@ pub fn build(desc: &SceneDesc, source: &Source, base_dir: &Path) -> Result<Loade
                 format!("a material named `{name}` already exists"),
             ));
         }
-        let material = m.get_ref().to_material();
-        if let Some(s) = &m.get_ref().shininess {
-            check(
-                source,
-                s.span(),
-                s.get_ref().0 >= 0.0,
-                "shininess must not be negative",
-            )?;
-        }
-        if let Some(ior) = &m.get_ref().ior {
-            check(
-                source,
-                ior.span(),
-                ior.get_ref().0 > 0.0,
-                "ior must be positive",
-            )?;
-        }
+        let material = crate::materials::whitted_material(m.get_ref(), source)?;
         material_ids.insert(name.as_str(), builder.material(material));
     }
 
@@ -252,6 +236,10 @@ fn light(l: &Spanned<crate::desc::LightDesc>, source: &Source) -> Result<Light, 
                 falloff,
             }))
         }
+        LightKind::Spot | LightKind::Environment => Err(source.error(
+            l.span(),
+            format!("{}s are not supported yet", d.kind.name()),
+        )),
         LightKind::Directional => {
             let kind = "directional light";
             refuse_keys(
@@ -306,6 +294,9 @@ fn add_object(
         ObjectKind::Plane => &["point", "normal"],
         ObjectKind::Triangle => &["vertices"],
         ObjectKind::Mesh => &["file", "translate", "rotate", "scale"],
+        _ => {
+            return Err(source.error(o.span(), format!("{kind}s are not supported yet")));
+        }
     };
     let others: Vec<_> = keys
         .into_iter()
@@ -360,13 +351,7 @@ fn add_object(
                 ok,
                 "the triangle's vertices are collinear: it has no area",
             )?;
-            builder.mesh(
-                Mesh {
-                    positions: v.to_vec(),
-                    triangles: vec![[0, 1, 2]],
-                },
-                material,
-            );
+            builder.mesh(Mesh::new(v.to_vec(), vec![[0, 1, 2]]), material);
         }
         ObjectKind::Mesh => {
             let file = required(source, table, kind, "file", &d.file)?;
@@ -389,6 +374,7 @@ fn add_object(
             };
             builder.instance(mesh, mesh_transform(d), material);
         }
+        _ => unreachable!("refused above"),
     }
     Ok(())
 }

@@ -12,6 +12,7 @@ pub mod build;
 pub mod desc;
 pub mod error;
 pub mod hash;
+pub mod materials;
 pub mod mesh_file;
 pub mod obj;
 pub mod ply;

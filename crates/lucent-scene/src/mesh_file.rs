@@ -40,15 +40,9 @@ pub fn read_mesh_fingerprinted(
     fingerprint.add(&bytes);
     if ext.as_deref() == Some("obj") {
         let m = crate::obj::parse_obj(&String::from_utf8_lossy(&bytes), path)?;
-        Ok(Mesh {
-            positions: m.positions,
-            triangles: m.triangles,
-        })
+        Ok(Mesh::new(m.positions, m.triangles))
     } else {
         let m = crate::ply::parse_ply(&bytes, path)?;
-        Ok(Mesh {
-            positions: m.positions,
-            triangles: m.triangles,
-        })
+        Ok(Mesh::new(m.positions, m.triangles))
     }
 }

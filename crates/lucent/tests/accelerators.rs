@@ -49,10 +49,7 @@ fn build(parts: &Parts, kind: AccelKind) -> Scene {
             let triangles = (0..tris.len() as u32)
                 .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
                 .collect();
-            b.add_mesh(Mesh {
-                positions,
-                triangles,
-            })
+            b.add_mesh(Mesh::new(positions, triangles))
         })
         .collect();
     for &(mesh, transform) in &parts.instances {

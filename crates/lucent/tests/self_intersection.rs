@@ -130,10 +130,7 @@ fn no_shadow_acne_on_large_grounds() {
                 triangles.push([k + 1, k + n + 1, k + n + 2]);
             }
         }
-        Mesh {
-            positions,
-            triangles,
-        }
+        Mesh::new(positions, triangles)
     };
     let grounds: Vec<(&str, AddGround)> = vec![
         (

@@ -1,10 +1,10 @@
 //! The `[camera]` table.
 
 use super::{Finite, Vector};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// `[camera]`: a pinhole camera.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
     /// Where the eye is.

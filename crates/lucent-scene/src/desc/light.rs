@@ -1,21 +1,39 @@
 //! `[[light]]` tables.
 
-use super::{Color, Vector};
-use serde::Deserialize;
+use super::{Color, Finite, Vector};
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
-/// The kinds of light.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+/// The kinds of light. Area lights are objects whose material has an `emission`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LightKind {
     /// `position`, `intensity`, `falloff`.
     Point,
+    /// `position`, `direction`, `intensity`, `falloff`, `cutoff`, `cutoff_start`: a point light
+    /// shining into a cone.
+    Spot,
     /// `direction`, `intensity`.
     Directional,
+    /// `intensity`, `file`: light from every direction at infinity, constant or a lat-long
+    /// image.
+    Environment,
+}
+
+impl LightKind {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightKind::Point => "point light",
+            LightKind::Spot => "spot light",
+            LightKind::Directional => "directional light",
+            LightKind::Environment => "environment light",
+        }
+    }
 }
 
 /// How a point light falls off.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum FalloffName {
     /// None: the classic model.
@@ -26,22 +44,49 @@ pub enum FalloffName {
 }
 
 /// One `[[light]]`. Which keys apply depends on `type`; the others are refused in build.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightDesc {
-    /// `"point"` or `"directional"`.
+    /// `"point"`, `"spot"`, `"directional"` or `"environment"`.
     #[serde(rename = "type")]
     pub kind: LightKind,
-    /// Intensity `I_j` (default 1).
-    #[serde(default)]
+    /// Intensity `I_j` (default 1); an environment's radiance (or its image's multiplier).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub intensity: Option<Color>,
-    /// Point: where it is.
-    #[serde(default)]
+    /// Point, spot: where it is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub position: Option<Spanned<Vector>>,
-    /// Point: `"none"` (default) or `"quadratic"`.
-    #[serde(default)]
+    /// Point, spot: `"none"` (default) or `"quadratic"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub falloff: Option<Spanned<FalloffName>>,
-    /// Directional: the direction the light travels in (non-zero).
-    #[serde(default)]
+    /// Directional, spot: the direction the light travels in (non-zero).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<Spanned<Vector>>,
+    /// Spot: the cone's half-angle in degrees, in (0, 90].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cutoff: Option<Spanned<Finite>>,
+    /// Spot: the half-angle where the edge's smooth falloff starts (default `cutoff`: a hard
+    /// edge).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cutoff_start: Option<Spanned<Finite>>,
+    /// Environment: a lat-long (equirectangular) image, relative to the scene file's folder;
+    /// +y is up, the image's centre column looks along −z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<Spanned<String>>,
+}
+
+impl LightDesc {
+    /// A light of `kind` with every key missing.
+    pub fn new(kind: LightKind) -> Self {
+        Self {
+            kind,
+            intensity: None,
+            position: None,
+            falloff: None,
+            direction: None,
+            cutoff: None,
+            cutoff_start: None,
+            file: None,
+        }
+    }
 }

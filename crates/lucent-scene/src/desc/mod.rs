@@ -13,17 +13,17 @@ pub mod settings;
 pub mod values;
 
 pub use camera::CameraDesc;
-pub use light::{LightDesc, LightKind};
-pub use material::{DiffuseDesc, MaterialDesc};
+pub use light::{FalloffName, LightDesc, LightKind};
+pub use material::{DiffuseDesc, MaterialDesc, MaterialKind};
 pub use object::{ObjectDesc, ObjectKind};
 pub use settings::{ImageDesc, IntegratorName, RenderDesc, WorldDesc};
-pub use values::{Color, Finite, Scale, Vector};
+pub use values::{Color, Finite, Matrix, Scale, Vector};
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
 /// A whole scene file.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneDesc {
     /// `[image]`: resolution and samples.
@@ -38,12 +38,12 @@ pub struct SceneDesc {
     #[serde(default)]
     pub render: RenderDesc,
     /// `[[material]]` tables.
-    #[serde(default, rename = "material")]
+    #[serde(default, rename = "material", skip_serializing_if = "Vec::is_empty")]
     pub materials: Vec<Spanned<MaterialDesc>>,
     /// `[[light]]` tables.
-    #[serde(default, rename = "light")]
+    #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<Spanned<LightDesc>>,
     /// `[[object]]` tables.
-    #[serde(default, rename = "object")]
+    #[serde(default, rename = "object", skip_serializing_if = "Vec::is_empty")]
     pub objects: Vec<Spanned<ObjectDesc>>,
 }

@@ -1,11 +1,11 @@
 //! `[[object]]` tables.
 
-use super::{Finite, Scale, Vector};
-use serde::Deserialize;
+use super::{Finite, Matrix, Scale, Vector};
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
 /// The kinds of object.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectKind {
     /// `center`, `radius`.
@@ -14,8 +14,14 @@ pub enum ObjectKind {
     Plane,
     /// `vertices` (three points).
     Triangle,
-    /// `file` (an OBJ file), and optionally `translate`, `rotate`, `scale`.
+    /// `file` (OBJ, PLY, glTF), `part`, `smooth`, and a placement.
     Mesh,
+    /// The square `[-1, 1]²` in the plane z = 0, facing +z, and a placement.
+    Rectangle,
+    /// The cube `[-1, 1]³`, facing out, and a placement.
+    Cube,
+    /// The disk of radius 1 in the plane z = 0, facing +z, and a placement.
+    Disk,
 }
 
 impl ObjectKind {
@@ -26,12 +32,18 @@ impl ObjectKind {
             ObjectKind::Plane => "plane",
             ObjectKind::Triangle => "triangle",
             ObjectKind::Mesh => "mesh",
+            ObjectKind::Rectangle => "rectangle",
+            ObjectKind::Cube => "cube",
+            ObjectKind::Disk => "disk",
         }
     }
 }
 
 /// One `[[object]]`. Which keys apply depends on `type`; the others are refused in build.
-#[derive(Clone, Debug, Deserialize)]
+///
+/// A placement (meshes, rectangles, cubes, disks) is either `transform` or any of `scale`,
+/// `rotate`, `translate` (applied in that order).
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
     /// What it is.
@@ -40,30 +52,67 @@ pub struct ObjectDesc {
     /// The name of its material.
     pub material: Spanned<String>,
     /// Sphere: centre.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub center: Option<Spanned<Vector>>,
     /// Sphere: radius, > 0.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<Spanned<Finite>>,
     /// Plane: a point on it.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub point: Option<Spanned<Vector>>,
     /// Plane: its normal (non-zero; the front side).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal: Option<Spanned<Vector>>,
     /// Triangle: three corners, counter-clockwise seen from the front.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vertices: Option<Spanned<[Vector; 3]>>,
-    /// Mesh: an OBJ file, relative to the scene file's folder.
-    #[serde(default)]
+    /// Mesh: an OBJ, PLY, glTF or GLB file, relative to the scene file's folder.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<Spanned<String>>,
-    /// Mesh: moved by this after rotating.
-    #[serde(default)]
+    /// Mesh: which part of the file (OBJ: the faces of one `usemtl` material; glTF:
+    /// `"MESH/PRIMITIVE"`, indices, with no node transform). Default: the whole file (glTF:
+    /// every node of its scene, placed by the node transforms).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub part: Option<Spanned<String>>,
+    /// Mesh: shade with the file's vertex normals where it has them (default true).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub smooth: Option<bool>,
+    /// Mesh and shapes: turn the front side to the back (reverse every triangle).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flip_normals: Option<bool>,
+    /// Placement: a whole affine transform (instead of scale, rotate, translate).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transform: Option<Spanned<Matrix>>,
+    /// Placement: moved by this after rotating.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub translate: Option<Spanned<Vector>>,
-    /// Mesh: rotated by these angles in degrees about x, then y, then z, after scaling.
-    #[serde(default)]
+    /// Placement: rotated by these angles in degrees about x, then y, then z, after scaling.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotate: Option<Spanned<Vector>>,
-    /// Mesh: scaled by this first (a number or per axis).
-    #[serde(default)]
+    /// Placement: scaled by this first (a number or per axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<Spanned<Scale>>,
+}
+
+impl ObjectDesc {
+    /// An object of `kind` with `material` and every other key missing.
+    pub fn new(kind: ObjectKind, material: &str) -> Self {
+        Self {
+            kind,
+            material: Spanned::new(0..0, material.to_string()),
+            center: None,
+            radius: None,
+            point: None,
+            normal: None,
+            vertices: None,
+            file: None,
+            part: None,
+            smooth: None,
+            flip_normals: None,
+            transform: None,
+            translate: None,
+            rotate: None,
+            scale: None,
+        }
+    }
 }

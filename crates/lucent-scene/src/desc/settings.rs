@@ -1,11 +1,11 @@
 //! The `[image]`, `[world]` and `[render]` tables.
 
 use super::{Color, Finite};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
 /// `[image]`.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ImageDesc {
     /// Width in pixels (default 800).
@@ -27,7 +27,7 @@ impl Default for ImageDesc {
 }
 
 /// `[world]`.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WorldDesc {
     /// Colour of rays that hit nothing (default black).
@@ -46,7 +46,7 @@ impl Default for WorldDesc {
 }
 
 /// The integrators a scene file can name.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum IntegratorName {
     /// Ray casting: flat diffuse colours.
@@ -57,7 +57,7 @@ pub enum IntegratorName {
 }
 
 /// The ray–triangle tests a scene file can name.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TriangleTestName {
     /// Woop, Benthin & Wald 2013.
@@ -68,7 +68,7 @@ pub enum TriangleTestName {
 }
 
 /// `[render]`.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RenderDesc {
     /// `"raycast"` or `"whitted"` (default).

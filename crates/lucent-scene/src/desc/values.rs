@@ -4,8 +4,8 @@
 
 use glam::Vec3;
 use lucent::Rgb;
-use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::{Deserialize, Serialize, Serializer};
 use std::fmt;
 
 /// A finite number (integers are accepted); NaN and infinities are refused.
@@ -23,6 +23,11 @@ pub struct Color(pub Rgb);
 /// A scale: one number for all axes, or `[x, y, z]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scale(pub Vec3);
+
+/// A 4 × 4 affine transform: 16 finite numbers, row by row (the last row `[0, 0, 0, 1]`),
+/// applied to column vectors: `p' = M·p`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Matrix(pub glam::Mat4);
 
 fn finite<E: de::Error>(v: f64) -> Result<f32, E> {
     let f = v as f32;
@@ -166,5 +171,78 @@ impl<'de> Deserialize<'de> for Color {
             return Err(de::Error::custom("colours must not be negative"));
         }
         Ok(Color(rgb))
+    }
+}
+
+impl<'de> Deserialize<'de> for Matrix {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let rows = match d.deserialize_any(Numbers::<16> {
+            what: "a matrix: 16 finite numbers, row by row",
+            scalar_ok: false,
+        })? {
+            Read::Array(v) => v,
+            Read::Scalar(_) => unreachable!("the visitor refuses scalars"),
+        };
+        if rows[12..] != [0.0, 0.0, 0.0, 1.0] {
+            return Err(de::Error::custom(
+                "a transform's last row must be [0, 0, 0, 1] (no projection)",
+            ));
+        }
+        let m = glam::Mat4::from_cols_array(&rows).transpose();
+        if m.determinant() == 0.0 || !m.determinant().is_finite() {
+            return Err(de::Error::custom(
+                "the transform is singular: it flattens the object",
+            ));
+        }
+        Ok(Matrix(m))
+    }
+}
+
+/// A number written with the fewest digits that read back as the same `f32` (`0.8`, not
+/// `0.800000011920929`).
+fn shortest(v: f32) -> f64 {
+    format!("{v}").parse().unwrap_or(f64::from(v))
+}
+
+impl Serialize for Finite {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_f64(shortest(self.0))
+    }
+}
+
+impl Serialize for Vector {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.0.to_array().map(shortest).serialize(s)
+    }
+}
+
+impl Serialize for Scale {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if self.0.x == self.0.y && self.0.y == self.0.z {
+            s.serialize_f64(shortest(self.0.x))
+        } else {
+            self.0.to_array().map(shortest).serialize(s)
+        }
+    }
+}
+
+impl Serialize for Color {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let Rgb { r, g, b } = self.0;
+        if r == g && g == b {
+            s.serialize_f64(shortest(r))
+        } else {
+            [r, g, b].map(shortest).serialize(s)
+        }
+    }
+}
+
+impl Serialize for Matrix {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.0
+            .transpose()
+            .to_cols_array()
+            .map(shortest)
+            .serialize(s)
     }
 }

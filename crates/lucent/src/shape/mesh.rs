@@ -1,6 +1,8 @@
-//! Triangle meshes as flat arrays: positions and index triples.
+//! Triangle meshes as flat arrays: positions and index triples, and optional per-vertex
+//! normals (smooth shading), texture coordinates and colours.
 
-use glam::Vec3;
+use crate::Rgb;
+use glam::{Vec2, Vec3};
 use lucent_accel::Aabb;
 
 /// An indexed triangle mesh (its material is given when it is added to a scene).
@@ -13,9 +15,63 @@ pub struct Mesh {
     pub positions: Vec<Vec3>,
     /// Vertex indices of each triangle, all `< positions.len()`.
     pub triangles: Vec<[u32; 3]>,
+    /// Per-vertex shading normals (unit length), or empty: the shading normal is then the
+    /// triangle's own.
+    pub normals: Vec<Vec3>,
+    /// Per-vertex texture coordinates `(u, v)`, `v` growing downwards in the image (glTF's
+    /// convention; OBJ's `v` is flipped on reading), or empty.
+    pub uvs: Vec<Vec2>,
+    /// Per-vertex colours (linear RGB), multiplying the diffuse colour, or empty.
+    pub colors: Vec<Rgb>,
 }
 
 impl Mesh {
+    /// A mesh of positions and triangles only.
+    pub fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Self {
+        Self {
+            positions,
+            triangles,
+            ..Self::default()
+        }
+    }
+
+    /// Checks that the optional arrays are empty or hold one entry per vertex, and that every
+    /// index is in range; the message says what is wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        let n = self.positions.len();
+        for (what, len) in [
+            ("normals", self.normals.len()),
+            ("texture coordinates", self.uvs.len()),
+            ("colours", self.colors.len()),
+        ] {
+            if len != 0 && len != n {
+                return Err(format!("{len} {what} for {n} vertices"));
+            }
+        }
+        if let Some((i, t)) = self
+            .triangles
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&v| v as usize >= n))
+        {
+            return Err(format!(
+                "triangle {i} refers to vertex {}, but there are {n}",
+                t.iter().max().unwrap_or(&0)
+            ));
+        }
+        Ok(())
+    }
+
+    /// Turns every triangle around (and the normals with it).
+    pub fn flip(&mut self) {
+        for t in &mut self.triangles {
+            t.swap(1, 2);
+        }
+        for n in &mut self.normals {
+            *n = -*n;
+        }
+    }
+
     /// The three vertices of triangle `i`.
     #[inline]
     pub fn vertices(&self, i: u32) -> [Vec3; 3] {

@@ -74,10 +74,7 @@ pub fn icosphere(subdivisions: u32) -> Mesh {
         }
         triangles = next;
     }
-    Mesh {
-        positions,
-        triangles,
-    }
+    Mesh::new(positions, triangles)
 }
 
 /// `mesh` scaled by `scale` and moved by `offset`.
