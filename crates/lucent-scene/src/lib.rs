@@ -12,15 +12,19 @@ pub mod build;
 pub mod desc;
 pub mod error;
 pub mod hash;
+pub mod import;
 pub mod materials;
 pub mod mesh_file;
 pub mod obj;
+pub mod paths;
 pub mod ply;
 
 pub use bare_mesh::bare_mesh_scene;
 pub use build::{Loaded, build};
 pub use desc::SceneDesc;
 pub use error::{LoadError, Source};
+pub use import::Imported;
+pub use paths::LoadOptions;
 pub use toml::Spanned;
 
 use std::path::{Path, PathBuf};

@@ -1,0 +1,68 @@
+//! Paths named inside scene files, resolved against the scene's folder — and, with
+//! `--sandbox`, kept inside it.
+
+use std::path::{Component, Path, PathBuf};
+
+/// How files named inside a scene may be reached.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// Refuse absolute paths and paths that climb out of the scene's folder with `..`
+    /// (for scenes from untrusted sources).
+    pub sandbox: bool,
+}
+
+/// `name` (as written in a scene file) resolved against `base_dir`; with `options.sandbox`, an
+/// error when it is absolute or climbs out of `base_dir`.
+pub fn resolve(base_dir: &Path, name: &str, options: &LoadOptions) -> Result<PathBuf, String> {
+    let rel = Path::new(name);
+    if options.sandbox {
+        if rel.is_absolute() || rel.has_root() {
+            return Err(format!(
+                "`{name}` is an absolute path, refused by --sandbox"
+            ));
+        }
+        let mut depth = 0i32;
+        for c in rel.components() {
+            match c {
+                Component::ParentDir => depth -= 1,
+                Component::Normal(_) => depth += 1,
+                Component::CurDir => {}
+                Component::RootDir | Component::Prefix(_) => depth = -1,
+            }
+            if depth < 0 {
+                return Err(format!(
+                    "`{name}` leaves the scene's folder, refused by --sandbox"
+                ));
+            }
+        }
+    }
+    Ok(base_dir.join(rel))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sandbox_keeps_paths_inside() {
+        let sandbox = LoadOptions { sandbox: true };
+        let base = Path::new("scenes");
+        assert_eq!(
+            resolve(base, "a/b.obj", &sandbox).unwrap(),
+            base.join("a/b.obj")
+        );
+        assert!(resolve(base, "a/../b.obj", &sandbox).is_ok());
+        assert!(
+            resolve(base, "../b.obj", &sandbox)
+                .unwrap_err()
+                .contains("leaves")
+        );
+        assert!(resolve(base, "a/../../b.obj", &sandbox).is_err());
+        assert!(
+            resolve(base, "/etc/passwd", &sandbox)
+                .unwrap_err()
+                .contains("absolute")
+        );
+        assert!(resolve(base, "/etc/passwd", &LoadOptions::default()).is_ok());
+    }
+}
