@@ -43,5 +43,6 @@ pub fn whitted_material(m: &MaterialDesc, source: &Source) -> Result<Material, L
         kr: c(m.kr),
         kt: c(m.kt),
         ior: m.ior.as_ref().map_or(1.0, |s| s.get_ref().0),
+        ke: Rgb::BLACK,
     })
 }

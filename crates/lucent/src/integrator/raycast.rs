@@ -11,9 +11,7 @@ use lucent_accel::Ray;
 /// The diffuse colour of the nearest surface, or the background.
 pub fn radiance(scene: &Scene, ray: &Ray, stats: &mut RayStats) -> Rgb {
     match scene.intersect(ray, &mut stats.traversal) {
-        Some(hit) => scene.materials[hit.material as usize]
-            .kd
-            .eval(hit.texture_coords),
-        None => scene.background,
+        Some(hit) => scene.diffuse(&scene.materials[hit.material as usize], &hit),
+        None => scene.background_along(ray.dir),
     }
 }

@@ -15,6 +15,11 @@
 //!   refracted ray of Snell's law ([`crate::optics::refract`]), with `μ = 1/ior` entering the
 //!   material and `ior` leaving it (entering when the ray meets the shape's geometric normal from
 //!   outside, `N·I < 0`). On total internal reflection, `kt` joins `kr` on the mirror ray.
+//! - Smooth meshes shade with their interpolated vertex normal; the triangle's own normal still
+//!   decides which side a ray or a light is on, and takes over when the bent normal would send
+//!   a reflected or refracted ray through the surface.
+//! - A surface's own emission `ke` (area lights; MTL's `Ke`) is added where its front side is
+//!   seen.
 //! - A ray's weight is the product of the `kr` and `kt` factors on its way from the camera; a
 //!   secondary ray is traced only when its weight's largest channel reaches `min_weight`, and
 //!   only up to `max_depth` bounces (camera rays are depth 0), and at most
@@ -88,7 +93,7 @@ impl Whitted {
     ) -> Rgb {
         match scene.intersect_from(ray, from, &mut stats.traversal) {
             Some(hit) => self.shade(scene, ray, &hit, path, budget, stats),
-            None => scene.background,
+            None => scene.background_along(ray.dir),
         }
     }
 
@@ -104,17 +109,27 @@ impl Whitted {
         let m = &scene.materials[hit.material as usize];
         let i = ray.dir;
         let entering = hit.normal.dot(i) < 0.0;
-        let n = if entering { hit.normal } else { -hit.normal };
+        // The geometric normal decides sides (entering, a light behind the surface); the
+        // shading normal (interpolated on smooth meshes) shapes the lighting and the bounces.
+        let ng = if entering { hit.normal } else { -hit.normal };
+        let n = if entering {
+            hit.shading_normal
+        } else {
+            -hit.shading_normal
+        };
         let v = -i;
-        let kd = m.kd.eval(hit.texture_coords);
+        let kd = scene.diffuse(m, hit);
 
         let mut color = m.ka * scene.ambient;
+        if entering {
+            color += m.ke;
+        }
         for light in &scene.lights {
             let Some(l) = light.illuminate(hit.point) else {
                 continue;
             };
             let n_dot_l = n.dot(l.to_light);
-            if n_dot_l <= 0.0 {
+            if n_dot_l <= 0.0 || ng.dot(l.to_light) <= 0.0 {
                 continue;
             }
             let s = self.shadow(scene, hit, l.to_light, l.distance, stats);
@@ -132,7 +147,9 @@ impl Whitted {
         let mut kr = m.kr;
         if !m.kt.is_black() {
             let mu = if entering { 1.0 / m.ior } else { m.ior };
-            match refract(i, n, mu) {
+            // A bent normal may send the ray to the wrong side: then bend by the face's.
+            let bent = refract(i, n, mu).filter(|t| t.dot(ng) < 0.0);
+            match bent.or_else(|| refract(i, ng, mu)) {
                 Some(t) => {
                     if let Some(child) = self.child(path, m.kt, budget) {
                         stats.refracted += 1;
@@ -148,7 +165,8 @@ impl Whitted {
             && let Some(child) = self.child(path, kr, budget)
         {
             stats.reflected += 1;
-            let (ray, from) = spawn_ray(hit, reflect(i, n).normalize());
+            let r = Some(reflect(i, n)).filter(|r| r.dot(ng) > 0.0);
+            let (ray, from) = spawn_ray(hit, r.unwrap_or_else(|| reflect(i, ng)).normalize());
             color += kr * self.trace(scene, &ray, Some(from), &child, budget, stats);
         }
         color

@@ -6,9 +6,11 @@
 
 pub mod directional;
 pub mod point;
+pub mod spot;
 
 pub use directional::DirectionalLight;
 pub use point::{Falloff, PointLight};
+pub use spot::SpotLight;
 
 use crate::Rgb;
 use glam::Vec3;
@@ -18,6 +20,8 @@ use glam::Vec3;
 pub enum Light {
     /// Light from one point.
     Point(PointLight),
+    /// Light from one point, into a cone.
+    Spot(SpotLight),
     /// Parallel light from infinitely far away.
     Directional(DirectionalLight),
 }
@@ -39,6 +43,7 @@ impl Light {
     pub fn illuminate(&self, p: Vec3) -> Option<LightSample> {
         match self {
             Light::Point(l) => l.illuminate(p),
+            Light::Spot(l) => l.illuminate(p),
             Light::Directional(l) => Some(l.illuminate()),
         }
     }

@@ -23,6 +23,9 @@ pub struct Material {
     pub kt: Rgb,
     /// Index of refraction of the material's inside (the outside is taken as vacuum, 1).
     pub ior: f32,
+    /// Radiance the surface emits from its front side (an area light); added to what it
+    /// reflects.
+    pub ke: Rgb,
 }
 
 impl Default for Material {
@@ -36,6 +39,7 @@ impl Default for Material {
             kr: Rgb::BLACK,
             kt: Rgb::BLACK,
             ior: 1.0,
+            ke: Rgb::BLACK,
         }
     }
 }

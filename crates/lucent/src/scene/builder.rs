@@ -6,6 +6,7 @@ use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, Transform, TriangleTest};
+use crate::texture::ImageTexture;
 use glam::Affine3A;
 use lucent_accel::{Aabb, AccelKind, WideTriangleBvh};
 use std::time::Instant;
@@ -52,6 +53,22 @@ pub enum SceneError {
         /// How many vertices exist.
         count: usize,
     },
+    /// A mesh's normals, texture coordinates or colours do not match its vertices.
+    #[error("mesh {mesh}: {why}")]
+    BadVertexData {
+        /// The mesh's index.
+        mesh: u32,
+        /// What is wrong.
+        why: String,
+    },
+    /// A texture or the environment names an image that does not exist.
+    #[error("image {image} is used, but the scene has {count} images")]
+    NoSuchImage {
+        /// The image index given.
+        image: u32,
+        /// How many images exist.
+        count: usize,
+    },
 }
 
 /// Collects the parts of a scene, then builds it.
@@ -62,6 +79,8 @@ pub struct SceneBuilder {
     ambient: Rgb,
     materials: Vec<Material>,
     lights: Vec<Light>,
+    images: Vec<ImageTexture>,
+    environment: Option<u32>,
     spheres: Vec<(Sphere, ObjectTag)>,
     planes: Vec<(Plane, ObjectTag)>,
     meshes: Vec<Mesh>,
@@ -80,6 +99,8 @@ impl SceneBuilder {
             ambient: Rgb::BLACK,
             materials: vec![],
             lights: vec![],
+            images: vec![],
+            environment: None,
             spheres: vec![],
             planes: vec![],
             meshes: vec![],
@@ -118,6 +139,19 @@ impl SceneBuilder {
     pub fn material(&mut self, m: Material) -> u32 {
         self.materials.push(m);
         self.materials.len() as u32 - 1
+    }
+
+    /// Adds an image for textures to refer to; returns its index.
+    pub fn image(&mut self, image: ImageTexture) -> u32 {
+        self.images.push(image);
+        self.images.len() as u32 - 1
+    }
+
+    /// The lat-long image (by index) that rays hitting nothing see, instead of the background
+    /// colour.
+    pub fn environment(&mut self, image: Option<u32>) -> &mut Self {
+        self.environment = image;
+        self
     }
 
     /// Adds a light.
@@ -204,8 +238,26 @@ impl SceneBuilder {
                     });
                 }
             }
+            let per_vertex = [mesh.normals.len(), mesh.uvs.len(), mesh.colors.len()];
+            if per_vertex.iter().any(|&n| n != 0 && n != count) {
+                let why = mesh.validate().err().unwrap_or_default();
+                return Err(SceneError::BadVertexData {
+                    mesh: i as u32,
+                    why,
+                });
+            }
             if mesh.triangles.len() > u32::MAX as usize {
                 return Err(SceneError::TooManyPrimitives(mesh.triangles.len()));
+            }
+        }
+        let textures = self.materials.iter().filter_map(|m| match m.kd {
+            crate::texture::Texture::Image(i) => Some(i),
+            _ => None,
+        });
+        for image in textures.chain(self.environment) {
+            if image as usize >= self.images.len() {
+                let count = self.images.len();
+                return Err(SceneError::NoSuchImage { image, count });
             }
         }
         let top = self.spheres.len() + self.instances.len();
@@ -271,6 +323,8 @@ impl SceneBuilder {
             ambient: self.ambient,
             materials: self.materials,
             lights: self.lights,
+            images: self.images,
+            environment: self.environment,
             spheres: self.spheres,
             planes: self.planes,
             meshes,

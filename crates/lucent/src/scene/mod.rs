@@ -20,7 +20,9 @@ use crate::Rgb;
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
+use crate::shape::SurfaceHit;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, TriangleTest};
+use crate::texture::ImageTexture;
 use lucent_accel::{Aabb, AccelInfo, AccelKind, AnyAccelerator, WideTriangleBvh};
 use std::time::Duration;
 
@@ -79,6 +81,11 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Light sources.
     pub lights: Vec<Light>,
+    /// Images that textures refer to by index.
+    pub images: Vec<ImageTexture>,
+    /// A lat-long image (an index into `images`) that rays hitting nothing see instead of
+    /// `background`.
+    pub environment: Option<u32>,
     spheres: Vec<(Sphere, ObjectTag)>,
     planes: Vec<(Plane, ObjectTag)>,
     meshes: Vec<MeshEntry>,
@@ -150,6 +157,22 @@ impl Scene {
             lights: self.lights.len(),
             materials: self.materials.len(),
         }
+    }
+
+    /// What a ray going in unit direction `dir` sees when it hits nothing: the environment
+    /// image, or the background colour.
+    #[inline]
+    pub fn background_along(&self, dir: glam::Vec3) -> Rgb {
+        match self.environment.and_then(|i| self.images.get(i as usize)) {
+            Some(image) => image.lookup_direction(dir.normalize_or_zero()),
+            None => self.background,
+        }
+    }
+
+    /// The diffuse colour of `m` at `hit`: its texture there, times the mesh's vertex colour.
+    #[inline]
+    pub fn diffuse(&self, m: &Material, hit: &SurfaceHit) -> Rgb {
+        m.kd.eval(hit.texture_coords, hit.uv, &self.images) * hit.color
     }
 
     /// The bounding box of every bounded shape (infinite planes are left out).

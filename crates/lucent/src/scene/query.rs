@@ -1,9 +1,11 @@
 //! Ray queries: the nearest surface, and what blocks a shadow ray.
 
 use super::{MeshAccel, Scene};
+use crate::Rgb;
 use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, gamma, triangle};
 use crate::spawn::Leaving;
-use glam::Vec3;
+use crate::texture::image::latlong_uv;
+use glam::{Vec2, Vec3};
 use lucent_accel::{Accelerator, Ray, TraversalStats};
 
 /// The nearest hit found so far, before its surface is worked out.
@@ -187,11 +189,15 @@ impl Scene {
                 // Remove the along-normal rounding error of o + t·d.
                 let p = ray.at(t);
                 let point = p - plane.normal * plane.normal.dot(p - plane.point);
+                let coords = plane.surface_coords(point);
                 SurfaceHit {
                     t,
                     point,
                     normal: plane.normal,
-                    texture_coords: plane.surface_coords(point),
+                    texture_coords: coords,
+                    shading_normal: plane.normal,
+                    uv: coords.truncate(),
+                    color: Rgb::WHITE,
                     material: tag.material,
                     object: tag.object,
                     surface: SurfaceId::Plane(i),
@@ -201,11 +207,15 @@ impl Scene {
             Candidate::Sphere(i, t) => {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let point = sphere.project_to_surface(ray.at(t));
+                let normal = sphere.normal_at(point);
                 SurfaceHit {
                     t,
                     point,
-                    normal: sphere.normal_at(point),
+                    normal,
                     texture_coords: point,
+                    shading_normal: normal,
+                    uv: latlong_uv(normal),
+                    color: Rgb::WHITE,
                     material: tag.material,
                     object: tag.object,
                     surface: SurfaceId::Sphere(i),
@@ -220,19 +230,55 @@ impl Scene {
                     gamma(7) * ((b0 * v[0]).abs() + (b1 * v[1]).abs() + (b2 * v[2]).abs());
                 // A triangle that was hit has an area, so its normal exists.
                 let local_normal = triangle::normal(v).unwrap_or(Vec3::Z);
-                let (point, normal, error) = match instance.transform {
+                let mesh = &self.meshes[instance.mesh as usize].mesh;
+                let corners = mesh.triangles[tri as usize].map(|i| i as usize);
+                let local_shading = if mesh.normals.is_empty() {
+                    local_normal
+                } else {
+                    let n = corners
+                        .iter()
+                        .zip(hit.bary)
+                        .fold(Vec3::ZERO, |a, (&i, b)| a + b * mesh.normals[i]);
+                    // Degenerate or reversed vertex normals fall back to / turn to the face's.
+                    match n.try_normalize() {
+                        Some(n) if n.dot(local_normal) < 0.0 => -n,
+                        Some(n) => n,
+                        None => local_normal,
+                    }
+                };
+                let uv = if mesh.uvs.is_empty() {
+                    Vec2::new(b1, b2)
+                } else {
+                    corners
+                        .iter()
+                        .zip(hit.bary)
+                        .fold(Vec2::ZERO, |a, (&i, b)| a + b * mesh.uvs[i])
+                };
+                let color = if mesh.colors.is_empty() {
+                    Rgb::WHITE
+                } else {
+                    corners
+                        .iter()
+                        .zip(hit.bary)
+                        .fold(Rgb::BLACK, |a, (&i, b)| a + mesh.colors[i] * b)
+                };
+                let (point, normal, shading_normal, error) = match instance.transform {
                     Some(t) => (
                         t.point_to_world(local_point),
                         t.normal_to_world(local_normal),
+                        t.normal_to_world(local_shading),
                         t.error_to_world(local_point, local_error),
                     ),
-                    None => (local_point, local_normal, local_error),
+                    None => (local_point, local_normal, local_shading, local_error),
                 };
                 SurfaceHit {
                     t: hit.t,
                     point,
                     normal,
                     texture_coords: point,
+                    shading_normal,
+                    uv,
+                    color,
                     material: tag.material,
                     object: tag.object,
                     surface: SurfaceId::Triangle {

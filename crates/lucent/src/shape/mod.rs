@@ -40,6 +40,14 @@ pub struct SurfaceHit {
     pub normal: Vec3,
     /// Coordinates for solid textures: the world position, or the plane's own 2D frame.
     pub texture_coords: Vec3,
+    /// Unit shading normal: the mesh's interpolated vertex normal where it has them (turned to
+    /// the geometric normal's side), else the geometric normal.
+    pub shading_normal: Vec3,
+    /// Texture coordinates for image textures: a mesh's interpolated UVs, a sphere's lat-long
+    /// coordinates, a plane's own 2D frame.
+    pub uv: glam::Vec2,
+    /// The mesh's interpolated vertex colour, white elsewhere; multiplies the diffuse colour.
+    pub color: crate::Rgb,
     /// Index into the scene's materials.
     pub material: u32,
     /// Index of the scene object hit (stable across runs; for debug views and statistics).

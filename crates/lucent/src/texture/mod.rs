@@ -4,11 +4,13 @@
 //! To add a kind: a file with its struct and `eval`, a variant here, and its scene-file key.
 
 pub mod checker;
+pub mod image;
 
 pub use checker::Checker;
+pub use image::ImageTexture;
 
 use crate::Rgb;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A colour over a surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,15 +19,21 @@ pub enum Texture {
     Solid(Rgb),
     /// A 3D checkerboard of two colours.
     Checker(Checker),
+    /// An image of the scene's (`Scene::images`, by index), looked up by texture coordinates.
+    Image(u32),
 }
 
 impl Texture {
-    /// The colour at surface coordinates `p`.
+    /// The colour at a surface point with solid coordinates `p` and texture coordinates `uv`;
+    /// `images` are the scene's.
     #[inline]
-    pub fn eval(&self, p: Vec3) -> Rgb {
+    pub fn eval(&self, p: Vec3, uv: Vec2, images: &[ImageTexture]) -> Rgb {
         match self {
             Texture::Solid(c) => *c,
             Texture::Checker(c) => c.eval(p),
+            Texture::Image(i) => images
+                .get(*i as usize)
+                .map_or(Rgb::BLACK, |img| img.lookup(uv)),
         }
     }
 }

@@ -1,0 +1,205 @@
+//! What a hit carries besides its point: interpolated vertex normals, texture coordinates and
+//! colours, image textures, the environment, and emission.
+
+mod common;
+
+use common::any_camera;
+use glam::{Affine3A, Vec2, Vec3};
+use lucent::Rgb;
+use lucent::accel::{AccelKind, Ray, TraversalStats};
+use lucent::integrator::{Integrator, RayStats, Whitted};
+use lucent::light::{Light, PointLight};
+use lucent::material::Material;
+use lucent::scene::{Scene, SceneBuilder};
+use lucent::shape::Mesh;
+use lucent::texture::{ImageTexture, Texture};
+
+/// The triangle (0,0,0), (1,0,0), (0,1,0), facing +z, with per-vertex attributes.
+fn triangle() -> Mesh {
+    Mesh {
+        positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+        triangles: vec![[0, 1, 2]],
+        normals: vec![
+            Vec3::Z,
+            Vec3::new(1.0, 0.0, 1.0).normalize(),
+            Vec3::new(0.0, 1.0, 1.0).normalize(),
+        ],
+        uvs: vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+        ],
+        colors: vec![
+            Rgb::new(1.0, 0.0, 0.0),
+            Rgb::new(0.0, 1.0, 0.0),
+            Rgb::new(0.0, 0.0, 1.0),
+        ],
+    }
+}
+
+fn scene_with(mesh: Mesh, material: Material, accel: AccelKind, transform: Affine3A) -> Scene {
+    let mut b = SceneBuilder::new(any_camera());
+    b.accelerator(accel);
+    let m = b.material(material);
+    let id = b.add_mesh(mesh);
+    b.instance(id, transform, m);
+    b.build().unwrap()
+}
+
+fn hit_at(scene: &Scene, x: f32, y: f32) -> lucent::shape::SurfaceHit {
+    let ray = Ray::new(Vec3::new(x, y, 5.0), -Vec3::Z);
+    scene
+        .intersect(&ray, &mut TraversalStats::default())
+        .unwrap()
+}
+
+#[test]
+fn vertex_attributes_are_interpolated_with_the_barycentric_weights() {
+    // Both the scalar leaf test (bvh) and the packed SIMD one (wide) give the same weights.
+    for accel in [AccelKind::Bvh, AccelKind::Wide] {
+        let scene = scene_with(
+            triangle(),
+            Material::diffuse(Rgb::WHITE),
+            accel,
+            Affine3A::IDENTITY,
+        );
+        // At (0.25, 0.5): weights 0.25 for A, 0.25 for B, 0.5 for C.
+        let hit = hit_at(&scene, 0.25, 0.5);
+        let n = triangle().normals;
+        let want = (0.25 * n[0] + 0.25 * n[1] + 0.5 * n[2]).normalize();
+        assert!(
+            (hit.shading_normal - want).length() < 1e-5,
+            "{:?}",
+            hit.shading_normal
+        );
+        assert_eq!(hit.normal, Vec3::Z, "the geometric normal stays the face's");
+        assert!((hit.uv - Vec2::new(0.25, 0.5)).length() < 1e-6);
+        let c = hit.color;
+        assert!((c.r - 0.25).abs() < 1e-6 && (c.g - 0.25).abs() < 1e-6 && (c.b - 0.5).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn shading_normals_follow_the_instance_transform() {
+    let rotate = Affine3A::from_rotation_y(std::f32::consts::FRAC_PI_2);
+    let scene = scene_with(
+        triangle(),
+        Material::diffuse(Rgb::WHITE),
+        AccelKind::Wide,
+        rotate,
+    );
+    // The triangle now lies in the plane x = 0, facing +x: local (x, y, z) is world (z, y, −x).
+    // World (0, 0.1, −0.5) is local (0.5, 0.1, 0): weights 0.4, 0.5, 0.1.
+    let ray = Ray::new(Vec3::new(5.0, 0.1, -0.5), -Vec3::X);
+    let hit = scene
+        .intersect(&ray, &mut TraversalStats::default())
+        .unwrap();
+    assert!((hit.normal - Vec3::X).length() < 1e-6);
+    let n = triangle().normals;
+    let local = (0.4 * n[0] + 0.5 * n[1] + 0.1 * n[2]).normalize();
+    let want = rotate.transform_vector3(local);
+    assert!(
+        (hit.shading_normal - want).length() < 1e-5,
+        "{:?} vs {want:?}",
+        hit.shading_normal
+    );
+}
+
+#[test]
+fn reversed_vertex_normals_turn_to_the_face_and_missing_ones_give_the_face() {
+    let mut mesh = triangle();
+    mesh.normals = vec![-Vec3::Z; 3];
+    let scene = scene_with(
+        mesh,
+        Material::diffuse(Rgb::WHITE),
+        AccelKind::Wide,
+        Affine3A::IDENTITY,
+    );
+    assert_eq!(hit_at(&scene, 0.2, 0.2).shading_normal, Vec3::Z);
+    let flat = Mesh::new(triangle().positions, triangle().triangles);
+    let scene = scene_with(
+        flat,
+        Material::diffuse(Rgb::WHITE),
+        AccelKind::Wide,
+        Affine3A::IDENTITY,
+    );
+    let hit = hit_at(&scene, 0.2, 0.2);
+    assert_eq!((hit.shading_normal, hit.color), (Vec3::Z, Rgb::WHITE));
+}
+
+#[test]
+fn image_textures_are_looked_up_at_the_uvs_and_tinted_by_vertex_colours() {
+    // A 2×1 image: left texel red, right texel blue.
+    let image =
+        ImageTexture::new(2, 1, vec![Rgb::new(1.0, 0.0, 0.0), Rgb::new(0.0, 0.0, 1.0)]).unwrap();
+    let mut mesh = triangle();
+    mesh.colors.clear();
+    let mut b = SceneBuilder::new(any_camera());
+    let img = b.image(image);
+    let m = b.material(Material {
+        kd: Texture::Image(img),
+        ..Material::default()
+    });
+    b.mesh(mesh, m);
+    let scene = b.build().unwrap();
+    let raycast = |x: f32, y: f32| {
+        let ray = Ray::new(Vec3::new(x, y, 5.0), -Vec3::Z);
+        Integrator::Raycast.radiance(&scene, &ray, &mut RayStats::default())
+    };
+    // u = x here: u = 0.25 is the red texel's centre, u = 0.75 the blue one's.
+    assert_eq!(raycast(0.25, 0.1), Rgb::new(1.0, 0.0, 0.0));
+    assert_eq!(raycast(0.75, 0.1), Rgb::new(0.0, 0.0, 1.0));
+    // A material naming an image that does not exist is refused.
+    let mut b = SceneBuilder::new(any_camera());
+    b.material(Material {
+        kd: Texture::Image(3),
+        ..Material::default()
+    });
+    assert!(b.build().unwrap_err().to_string().contains("image 3"));
+}
+
+#[test]
+fn rays_that_miss_see_the_environment_image() {
+    // Top half white, bottom half dark: a sky over a ground.
+    let mut texels = vec![Rgb::WHITE; 4 * 2];
+    for t in &mut texels[4..] {
+        *t = Rgb::gray(0.1);
+    }
+    let mut b = SceneBuilder::new(any_camera());
+    let sky = b.image(ImageTexture::new(4, 2, texels).unwrap());
+    b.environment(Some(sky)).background(Rgb::new(1.0, 0.0, 1.0));
+    let scene = b.build().unwrap();
+    let whitted = Integrator::Whitted(Whitted::default());
+    let look =
+        |d: Vec3| whitted.radiance(&scene, &Ray::new(Vec3::ZERO, d), &mut RayStats::default());
+    assert_eq!(look(Vec3::Y), Rgb::WHITE);
+    assert_eq!(look(-Vec3::Y), Rgb::gray(0.1));
+}
+
+#[test]
+fn emission_is_seen_from_the_front_only() {
+    let glow = Material {
+        ke: Rgb::new(2.0, 1.0, 0.5),
+        ..Material::default()
+    };
+    let mut b = SceneBuilder::new(any_camera());
+    let m = b.material(glow);
+    b.mesh(Mesh::new(triangle().positions, triangle().triangles), m);
+    b.light(Light::Point(PointLight {
+        position: Vec3::new(0.2, 0.2, 3.0),
+        intensity: Rgb::WHITE,
+        falloff: Default::default(),
+    }));
+    let scene = b.build().unwrap();
+    let whitted = Integrator::Whitted(Whitted::default());
+    let front = Ray::new(Vec3::new(0.2, 0.2, 5.0), -Vec3::Z);
+    let back = Ray::new(Vec3::new(0.2, 0.2, -5.0), Vec3::Z);
+    assert_eq!(
+        whitted.radiance(&scene, &front, &mut RayStats::default()),
+        Rgb::new(2.0, 1.0, 0.5)
+    );
+    assert_eq!(
+        whitted.radiance(&scene, &back, &mut RayStats::default()),
+        Rgb::BLACK
+    );
+}
