@@ -23,6 +23,8 @@ pub struct FilmMeta {
     pub shard: Shard,
     /// Samples per pixel of the finished render.
     pub spp: u32,
+    /// Side of the tiles, in pixels: the unit shards are made of.
+    pub tile: u32,
     /// The scene file, or empty for the built-in default scene.
     pub scene: String,
     /// The command line's settings, as `key=value` pairs separated by `;`.
@@ -31,24 +33,20 @@ pub struct FilmMeta {
     pub output: String,
 }
 
-const FIELDS: [&str; 6] = [
-    "fingerprint",
-    "shard",
-    "spp",
-    "scene",
-    "overrides",
-    "output",
-];
-
 impl FilmMeta {
-    fn fields(&self) -> [String; 6] {
+    /// Each header attribute's name (after `lucent.`) and value.
+    fn fields(&self) -> [(&'static str, String); 7] {
         [
-            self.fingerprint.clone(),
-            format!("{}/{}", self.shard.index, self.shard.count),
-            self.spp.to_string(),
-            self.scene.clone(),
-            self.overrides.clone(),
-            self.output.clone(),
+            ("fingerprint", self.fingerprint.clone()),
+            (
+                "shard",
+                format!("{}/{}", self.shard.index, self.shard.count),
+            ),
+            ("spp", self.spp.to_string()),
+            ("tile", self.tile.to_string()),
+            ("scene", self.scene.clone()),
+            ("overrides", self.overrides.clone()),
+            ("output", self.output.clone()),
         ]
     }
 }
@@ -87,15 +85,12 @@ fn checksum(data: &FilmData) -> String {
     let mut f = lucent_scene::hash::Fingerprint::default();
     f.add(&data.width.to_le_bytes());
     f.add(&data.height.to_le_bytes());
-    let floats = data.sums.iter().flatten().chain(&data.weights);
-    f.add(&floats.flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>());
-    f.add(
-        &data
-            .samples
-            .iter()
-            .flat_map(|v| v.to_le_bytes())
-            .collect::<Vec<u8>>(),
-    );
+    for v in data.sums.iter().flatten().chain(&data.weights) {
+        f.add_raw(&v.to_le_bytes());
+    }
+    for v in &data.samples {
+        f.add_raw(&v.to_le_bytes());
+    }
     format!("{:016x}", f.value())
 }
 
@@ -117,7 +112,7 @@ pub fn write_film(path: &Path, film: &Film, meta: &FilmMeta) -> anyhow::Result<(
         AnyChannel::new("samples", FlatSamples::U32(data.samples.clone())),
     ]));
     let mut attributes = LayerAttributes::named("lucent film");
-    for (key, value) in FIELDS.iter().zip(meta.fields()) {
+    for (key, value) in meta.fields() {
         let text =
             Text::new_or_none(escape(&value)).ok_or_else(|| anyhow!("cannot store `{value}`"))?;
         attributes.other.insert(
@@ -133,12 +128,61 @@ pub fn write_film(path: &Path, film: &Film, meta: &FilmMeta) -> anyhow::Result<(
     let image = Image::from_layer(Layer::new(
         size,
         attributes,
-        Encoding::FAST_LOSSLESS,
+        crate::output::EXR_ENCODING,
         channels,
     ));
     crate::output::write_atomically(path, |file| {
         image.write().to_buffered(file).map_err(|e| anyhow!("{e}"))
     })
+}
+
+/// The channels of a film file, and their sample types.
+const CHANNELS: [(&str, exr::meta::attribute::SampleType); 5] = {
+    use exr::meta::attribute::SampleType::{F32, U32};
+    [
+        ("samples", U32),
+        ("sum.B", F32),
+        ("sum.G", F32),
+        ("sum.R", F32),
+        ("weight", F32),
+    ]
+};
+
+/// Checks the header before any pixel is read: one layer of a size lucent renders, with the
+/// film's channels — so that a hostile file cannot make the reader allocate gigabytes.
+fn check_header(path: &Path) -> anyhow::Result<()> {
+    let not_ours = |why: String| {
+        anyhow!(
+            "{}: not a lucent partial film or checkpoint ({why})",
+            path.display()
+        )
+    };
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
+    let [header] = meta.headers.as_slice() else {
+        return Err(not_ours(format!("{} layers", meta.headers.len())));
+    };
+    let (w, h) = (header.layer_size.0 as u64, header.layer_size.1 as u64);
+    if w * h > lucent_scene::build::MAX_PIXELS
+        || w > u64::from(lucent_scene::build::MAX_IMAGE_SIDE)
+        || h > u64::from(lucent_scene::build::MAX_IMAGE_SIDE)
+    {
+        return Err(not_ours(format!(
+            "{w}×{h} pixels, more than lucent renders"
+        )));
+    }
+    let channels: Vec<(String, exr::meta::attribute::SampleType)> = header
+        .channels
+        .list
+        .iter()
+        .map(|c| (c.name.to_string(), c.sample_type))
+        .collect();
+    let want: Vec<(String, exr::meta::attribute::SampleType)> =
+        CHANNELS.iter().map(|(n, t)| (n.to_string(), *t)).collect();
+    if channels != want || header.deep {
+        return Err(not_ours("other channels than a film's".to_string()));
+    }
+    Ok(())
 }
 
 /// Reads a film file written by [`write_film`], checking that it is one.
@@ -149,6 +193,7 @@ pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
             path.display()
         )
     };
+    check_header(path)?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -178,7 +223,10 @@ pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
         index: index.parse().map_err(|_| not_ours("a garbled shard"))?,
         count: count.parse().map_err(|_| not_ours("a garbled shard"))?,
     };
-    if shard.count == 0 || shard.index >= shard.count {
+    if shard.count == 0
+        || shard.index >= shard.count
+        || u64::from(shard.count) > lucent_scene::build::MAX_PIXELS
+    {
         return Err(not_ours("a shard index out of range"));
     }
     let meta = FilmMeta {
@@ -187,6 +235,11 @@ pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
         spp: attr("spp")?
             .parse()
             .map_err(|_| not_ours("a garbled spp"))?,
+        tile: attr("tile")?
+            .parse()
+            .ok()
+            .filter(|&t| t > 0)
+            .ok_or_else(|| not_ours("a garbled tile size"))?,
         scene: attr("scene")?,
         overrides: attr("overrides")?,
         output: attr("output")?,
@@ -275,6 +328,7 @@ mod tests {
             fingerprint: "abc".into(),
             shard: Shard { index: 1, count: 3 },
             spp: 4,
+            tile: 16,
             scene: "scènes/x.toml".into(),
             overrides: "spp=4;width=3".into(),
             output: "out.png".into(),

@@ -37,13 +37,14 @@ impl Job {
 
     /// Hex fingerprint of the scene's inputs (scene text, mesh files) and of every setting that
     /// shapes the image: resolution, samples, seed, tile size (the unit of shards), integrator
-    /// and triangle test. Threads and the accelerator change nothing in the image, so they are
-    /// left out.
+    /// and triangle test — and lucent's version, since another build may draw other bits.
+    /// Threads and the accelerator change nothing in the image, so they are left out.
     pub fn fingerprint(&self) -> String {
         let s = &self.loaded.settings;
         let c = &self.loaded.scene.camera;
         let settings = format!(
-            "{}x{} spp={} seed={} tile={} {:?} {}",
+            "lucent {} {}x{} spp={} seed={} tile={} {:?} {}",
+            env!("CARGO_PKG_VERSION"),
             c.width(),
             c.height(),
             s.spp,
@@ -61,9 +62,10 @@ impl Job {
 
 /// Film bytes per pixel while rendering: radiance sums (12), weight (4), sample count (4).
 const FILM_BYTES_PER_PIXEL: u64 = 20;
-/// Bytes per pixel while a file is written: the larger of an image (its linear copy, 12, and
-/// encoding, up to 12) and a checkpoint (a copy of the film, 20, and its EXR channels, 20).
-const FILE_BYTES_PER_PIXEL: u64 = 40;
+/// Bytes per pixel while a file is written, at most: a checkpoint holds a copy of the film (20),
+/// its raw channels (20), the EXR encoder's copy of them (20) and its compressed blocks (up to
+/// 20); an image needs less (a linear copy, 12, and its encoding, up to 12).
+const FILE_BYTES_PER_PIXEL: u64 = 80;
 
 /// The memory a render needs, in bytes.
 #[derive(Clone, Copy, Debug)]

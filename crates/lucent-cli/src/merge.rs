@@ -2,72 +2,74 @@
 //! process would have made, bit for bit — or a clear refusal.
 
 use crate::cli::MergeArgs;
-use crate::film_file::read_film;
+use crate::film_file::{FilmMeta, read_film};
 use crate::output::{ImageFormat, write_image};
 use anyhow::{Context, bail};
+use lucent::film::Film;
+use lucent::render::Shard;
+use lucent::schedule::tiles;
+use std::collections::HashMap;
+use std::path::Path;
 use std::process::ExitCode;
 
-/// Checks that the parts belong together and cover the work exactly once, then writes the image.
+/// Checks that the parts belong together, that each is finished and holds only its own
+/// tiles, and that they cover the work exactly once; then writes the image. Parts are read one
+/// at a time, so merging needs the memory of two films, whatever the number of shards.
 pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     let format = ImageFormat::from_path(&args.output)?;
-    let mut parts = Vec::new();
+    crate::output::check_writable(&args.output)?;
+    let mut merged: Option<(Film, FilmMeta, &Path)> = None;
+    let mut seen: HashMap<u32, &Path> = HashMap::new();
     for path in &args.parts {
         let (film, meta) = read_film(path)?;
-        parts.push((path, film, meta));
-    }
-    let (first_path, first_film, first) = &parts[0];
-    let count = first.shard.count;
-    let mut seen: Vec<Option<&std::path::Path>> = vec![None; count as usize];
-    for (path, film, meta) in &parts {
-        let same = meta.fingerprint == first.fingerprint
-            && meta.spp == first.spp
-            && meta.shard.count == count;
-        if !same || (film.width(), film.height()) != (first_film.width(), first_film.height()) {
-            bail!(
-                "{} is from another render than {} (scene, settings or shard count differ): refusing to merge",
-                path.display(),
-                first_path.display()
-            );
+        if let Some((total, first, first_path)) = &merged {
+            let same = meta.fingerprint == first.fingerprint
+                && (meta.spp, meta.tile, meta.shard.count)
+                    == (first.spp, first.tile, first.shard.count)
+                && (film.width(), film.height()) == (total.width(), total.height());
+            if !same {
+                bail!(
+                    "{} is from another render than {} (scene, settings or shard count differ): refusing to merge",
+                    path.display(),
+                    first_path.display()
+                );
+            }
         }
-        let slot = &mut seen[meta.shard.index as usize];
-        if let Some(other) = slot {
+        if let Some(other) = seen.insert(meta.shard.index, path) {
             bail!(
-                "shard {}/{count} is given twice: {} and {}",
+                "shard {}/{} is given twice: {} and {}",
                 meta.shard.index,
+                meta.shard.count,
                 other.display(),
                 path.display()
             );
         }
-        *slot = Some(path.as_path());
+        check_part(path, &film, &meta)?;
+        match &mut merged {
+            Some((total, _, _)) => total.merge(&film),
+            None => merged = Some((film, meta, path)),
+        }
     }
-    let missing: Vec<String> = seen
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.is_none())
-        .map(|(i, _)| format!("{i}/{count}"))
+    let Some((film, first, _)) = merged else {
+        bail!("no partial films given");
+    };
+    let count = first.shard.count;
+    let missing: Vec<String> = (0..count)
+        .filter(|i| !seen.contains_key(i))
+        .take(10)
+        .map(|i| format!("{i}/{count}"))
         .collect();
     if !missing.is_empty() {
+        let more = if count as usize - seen.len() > missing.len() {
+            ", …"
+        } else {
+            ""
+        };
         bail!(
-            "shard{} {} missing",
+            "shard{} {}{more} missing",
             if missing.len() > 1 { "s" } else { "" },
             missing.join(", ")
         );
-    }
-    let mut film = first_film.clone();
-    for (_, f, _) in &parts[1..] {
-        film.merge(f);
-    }
-    // Every pixel belongs to exactly one shard; each must have finished its samples.
-    for y in 0..film.height() {
-        for x in 0..film.width() {
-            let n = film.samples(x, y);
-            if n != first.spp {
-                bail!(
-                    "pixel ({x}, {y}) has {n} of {} samples: a shard stopped early (resume it with `lucent render --resume` on its checkpoint) or overlaps another",
-                    first.spp
-                );
-            }
-        }
     }
     write_image(&film, &args.output, format)
         .with_context(|| format!("cannot write {}", args.output.display()))?;
@@ -79,4 +81,40 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
         first.spp
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// A part must hold every sample of its own tiles and nothing elsewhere.
+fn check_part(path: &Path, film: &Film, meta: &FilmMeta) -> anyhow::Result<()> {
+    let shard = Shard {
+        index: meta.shard.index,
+        count: meta.shard.count,
+    };
+    for (i, t) in tiles(film.width(), film.height(), meta.tile)
+        .iter()
+        .enumerate()
+    {
+        let want = if shard.owns(i) { meta.spp } else { 0 };
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                let n = film.samples(x, y);
+                if n != want && want > 0 {
+                    bail!(
+                        "{} (shard {}/{}) is unfinished: pixel ({x}, {y}) has {n} of {} samples; finish it with `lucent render --resume` on its checkpoint",
+                        path.display(),
+                        shard.index,
+                        shard.count,
+                        meta.spp
+                    );
+                } else if n != want {
+                    bail!(
+                        "{} (shard {}/{}) holds samples outside its tiles, at pixel ({x}, {y}): it is not a shard's partial film",
+                        path.display(),
+                        shard.index,
+                        shard.count
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
 }

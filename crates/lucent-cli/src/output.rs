@@ -12,6 +12,14 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+/// How EXR files are written: lossless, and with their blocks in increasing order so that the
+/// same image always gives the same bytes (parallel compression would otherwise order them as
+/// the threads finish).
+pub const EXR_ENCODING: exr::image::Encoding = exr::image::Encoding {
+    line_order: exr::meta::attribute::LineOrder::Increasing,
+    ..exr::image::Encoding::FAST_LOSSLESS
+};
+
 /// The image formats lucent writes, chosen by the file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ImageFormat {
@@ -57,12 +65,43 @@ pub fn write_atomically(
         let file = out.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
         std::fs::rename(&tmp, path)
-            .with_context(|| format!("cannot move {} into place", tmp.display()))
+            .with_context(|| format!("cannot move {} into place", tmp.display()))?;
+        // The rename itself reaches the disk only with the folder (for power cuts).
+        #[cfg(unix)]
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            File::open(dir).and_then(|d| d.sync_all()).ok();
+        }
+        Ok(())
     })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+/// Checks that `path`'s folder exists and takes new files (by creating and removing a probe).
+pub fn check_writable(path: &Path) -> anyhow::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        bail!(
+            "cannot write {}: the folder {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    let probe = dir.join(format!(".lucent-probe-{}", std::process::id()));
+    File::create(&probe).with_context(|| {
+        format!(
+            "cannot write {}: the folder {} does not take new files",
+            path.display(),
+            dir.display()
+        )
+    })?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
 }
 
 fn temporary_path(path: &Path) -> PathBuf {
@@ -121,7 +160,7 @@ pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Res
             let image = Image::from_layer(Layer::new(
                 (w as usize, h as usize),
                 attributes,
-                Encoding::FAST_LOSSLESS,
+                EXR_ENCODING,
                 channels,
             ));
             image

@@ -43,6 +43,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         fingerprint: plan.job.fingerprint(),
         shard: plan.shard,
         spp: settings.spp,
+        tile: settings.tile_size,
         scene: plan
             .job
             .scene_path
@@ -86,10 +87,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         bar.set_length(total);
         bar.set_position(done);
     };
-    let checkpoint_error = std::sync::Mutex::new(None);
+    let warned = AtomicBool::new(false);
     let save = |film: &Film| {
-        if let Err(e) = write_film(&plan.checkpoint, film, &meta) {
-            *checkpoint_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+        // Said at once, and once: the render goes on, but without crash safety.
+        if let Err(e) = write_film(&plan.checkpoint, film, &meta)
+            && !warned.swap(true, Ordering::Relaxed)
+        {
+            bar.suspend(|| {
+                eprintln!("warning: the periodic checkpoint could not be written: {e:#}")
+            });
         }
     };
     let every = args.checkpoint_every.map(|s| Checkpoints {
@@ -103,45 +109,55 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     };
     let rendered = render(scene, &settings, plan.start, &hooks)?;
     bar.finish_and_clear();
-    if let Some(e) = checkpoint_error
-        .into_inner()
-        .unwrap_or_else(|e| e.into_inner())
-    {
-        eprintln!("warning: a periodic checkpoint could not be written: {e:#}");
-    }
-
-    let (w, h) = (scene.camera.width(), scene.camera.height());
-    if plan.shard.count > 1 {
-        write_film(&plan.output, &rendered.film, &meta)
-            .with_context(|| format!("cannot write {}", plan.output.display()))?;
-    } else {
-        write_image(&rendered.film, &plan.output, plan.format)
-            .with_context(|| format!("cannot write {}", plan.output.display()))?;
-    }
-    println!(
-        "{}",
-        summary(&plan.output, w, h, settings.spp, &rendered.stats)
-    );
     if rendered.stats.rays.nonfinite > 0 {
         eprintln!(
             "warning: {} samples were NaN or infinite and were left out",
             rendered.stats.rays.nonfinite
         );
     }
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    let (least, most) = rendered.samples_range;
+
     if rendered.complete {
-        // A finished render needs no checkpoint any more.
+        if plan.shard.count > 1 {
+            write_film(&plan.output, &rendered.film, &meta)
+        } else {
+            write_image(&rendered.film, &plan.output, plan.format)
+        }
+        .with_context(|| format!("cannot write {}", plan.output.display()))?;
+        println!(
+            "{}",
+            summary(
+                &plan.output,
+                w,
+                h,
+                &format!("{} spp", settings.spp),
+                &rendered.stats
+            )
+        );
+        // A finished render needs its checkpoint no more (only ever ours: see `plan_new`).
         if plan.checkpoint.is_file() {
             let _ = std::fs::remove_file(&plan.checkpoint);
         }
         return Ok(ExitCode::SUCCESS);
     }
+
+    // Stopped: the checkpoint first, since it is what lets the work go on. An unfinished
+    // shard writes nothing under its final name, so a batch script can tell it from a
+    // finished one.
     write_film(&plan.checkpoint, &rendered.film, &meta)
         .with_context(|| format!("cannot write the checkpoint {}", plan.checkpoint.display()))?;
-    let (least, most) = rendered.film.sample_range();
+    let reached = format!("{least}..{most} of {} spp", settings.spp);
+    let image = if plan.shard.count > 1 {
+        "no partial film (the shard is unfinished)".to_string()
+    } else {
+        write_image(&rendered.film, &plan.output, plan.format)
+            .with_context(|| format!("cannot write {}", plan.output.display()))?;
+        println!("{}", summary(&plan.output, w, h, &reached, &rendered.stats));
+        format!("the partial image to {}", plan.output.display())
+    };
     eprintln!(
-        "interrupted: wrote the partial image to {} ({least}..{most} of {} samples per pixel) and the checkpoint {}; continue with: lucent render --resume {}",
-        plan.output.display(),
-        settings.spp,
+        "interrupted at {reached}: wrote {image} and the checkpoint {}; continue with: lucent render --resume {}",
         plan.checkpoint.display(),
         plan.checkpoint.display()
     );
@@ -176,7 +192,16 @@ fn plan_new(args: &RenderArgs) -> anyhow::Result<Plan> {
         .checkpoint
         .clone()
         .unwrap_or_else(|| default_checkpoint(&output));
+    if checkpoint.exists() {
+        bail!(
+            "{} exists: continue that render with `lucent render --resume {}`, or delete it to start over",
+            checkpoint.display(),
+            checkpoint.display()
+        );
+    }
+    check_files(&output, &checkpoint, args.scene.as_deref())?;
     let job = Job::load(args.scene.as_deref(), &args.overrides)?;
+    check_shard_count(&job, shard)?;
     Ok(Plan {
         job,
         shard,
@@ -213,6 +238,7 @@ fn plan_resume(args: &RenderArgs, ckpt: &Path) -> anyhow::Result<Plan> {
         .checkpoint
         .clone()
         .unwrap_or_else(|| ckpt.to_path_buf());
+    check_files(&output, &checkpoint, scene.as_deref())?;
     Ok(Plan {
         job,
         shard: meta.shard,
@@ -221,6 +247,46 @@ fn plan_resume(args: &RenderArgs, ckpt: &Path) -> anyhow::Result<Plan> {
         format,
         checkpoint,
     })
+}
+
+/// Before any work: the output and the checkpoint are different files, neither is the scene,
+/// and both folders take new files — so that no render's result is lost at its end.
+fn check_files(output: &Path, checkpoint: &Path, scene: Option<&Path>) -> anyhow::Result<()> {
+    let (out, ckpt) = (absolute(output), absolute(checkpoint));
+    if out == ckpt {
+        bail!(
+            "the checkpoint and the output are the same file, {}: give --checkpoint another name",
+            output.display()
+        );
+    }
+    if let Some(scene) = scene.map(absolute)
+        && (scene == out || scene == ckpt)
+    {
+        bail!(
+            "{} is the scene file: it cannot also be the output or the checkpoint",
+            scene.display()
+        );
+    }
+    for path in [output, checkpoint] {
+        crate::output::check_writable(path)?;
+    }
+    Ok(())
+}
+
+/// A shard count beyond the number of tiles would leave shards with nothing to do.
+fn check_shard_count(job: &Job, shard: Shard) -> anyhow::Result<()> {
+    let (c, s) = (&job.loaded.scene.camera, &job.loaded.settings);
+    let tiles = c.width().div_ceil(s.tile_size) as u64 * c.height().div_ceil(s.tile_size) as u64;
+    if u64::from(shard.count) > tiles {
+        bail!(
+            "--shard {}/{}: the image has only {tiles} tiles of {}×{} pixels to share out; use at most {tiles} shards",
+            shard.index,
+            shard.count,
+            s.tile_size,
+            s.tile_size
+        );
+    }
+    Ok(())
 }
 
 /// The output's format; a shard's output must be a partial film (`.exr`).
@@ -260,10 +326,10 @@ pub fn parse_shard(spec: &str) -> anyhow::Result<Shard> {
 }
 
 /// The one statistics line printed after a render.
-fn summary(output: &Path, w: u32, h: u32, spp: u32, s: &RenderStats) -> String {
+fn summary(output: &Path, w: u32, h: u32, samples: &str, s: &RenderStats) -> String {
     let r = &s.rays;
     format!(
-        "{}: {w}×{h}, {spp} spp, {} rays (camera {}, shadow {}, reflected {}, refracted {}), {:.3} s, {:.3} Mrays/s, {} threads",
+        "{}: {w}×{h}, {samples}, {} rays (camera {}, shadow {}, reflected {}, refracted {}), {:.3} s, {:.3} Mrays/s, {} threads",
         output.display(),
         r.total(),
         r.camera,

@@ -214,6 +214,10 @@ fn shards_in_separate_processes_merge_to_the_same_bits() {
         d,
         &[&["render", "-o", "whole.png"][..], &size].concat(),
     ));
+    assert_success(&run_in(
+        d,
+        &[&["render", "-o", "whole.exr"][..], &size].concat(),
+    ));
 
     let shard = |spec: &str, out: &str, var: Option<(&str, &str)>| {
         let mut cmd = lucent();
@@ -254,6 +258,14 @@ fn shards_in_separate_processes_merge_to_the_same_bits() {
     assert!(
         read("merged.png") == read("whole.png"),
         "merged PNG differs"
+    );
+    assert_success(&run_in(
+        d,
+        &["merge", "p1.exr", "p0.exr", "p2.exr", "-o", "merged.exr"],
+    ));
+    assert!(
+        read("merged.exr") == read("whole.exr"),
+        "the same image gives the same EXR bytes"
     );
 
     // Refusals: missing, duplicated, foreign (another seed; another shard count), bad index.
@@ -363,7 +375,7 @@ fn sigkill_while_writing_never_leaves_a_truncated_file() {
     // refuses its missing samples.
     let checkpoint_is_whole = |path: &Path| {
         let out = run_in(d, &["merge", path.to_str().unwrap(), "-o", "m.pfm"]);
-        assert_refused(&out, "a shard stopped early");
+        assert_refused(&out, "is unfinished");
     };
     let child = spawn(&["--spp", "64", "-o", "a.exr", "--checkpoint-every", "0.05"]);
     kill_when_written(child, "a.exr.checkpoint", &checkpoint_is_whole);
@@ -445,50 +457,81 @@ fn the_gnu_parallel_recipe_runs_as_written() {
     assert!(std::fs::read(d.join("image.png")).unwrap() == single_process_png(d));
 }
 
+/// The Slurm script, run as Slurm would run it for each array index (its `#SBATCH` lines are
+/// comments to bash): one task is stopped by SIGTERM at its "time limit" and run again, which
+/// resumes it; a finished task run again does nothing; the parts merge into the one-process
+/// image.
+#[cfg(unix)]
 #[test]
-fn the_slurm_script_runs_once_per_array_index() {
+fn the_slurm_script_runs_once_per_array_index_and_resumes_a_stopped_task() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    std::fs::write(d.join("scene.toml"), small_scene(96, 64)).unwrap();
+    // Heavy enough that one shard on one thread takes a few seconds.
+    let scene = small_scene(320, 240).replace("samples = 1", "samples = 96");
+    assert!(
+        scene.contains("samples = 96"),
+        "the example sets `samples = 1`"
+    );
+    std::fs::write(d.join("scene.toml"), scene).unwrap();
     let script = doc_block("runs this script once per array index");
     assert!(script.starts_with("#!/bin/bash\n#SBATCH"));
-    for index in 0..4 {
-        let output = Command::new("bash")
-            .arg("-c")
+    assert!(script.contains("\nN=16\n"));
+    let script = script.replace("\nN=16\n", "\nN=4\n");
+    let task = |index: u32| {
+        let mut cmd = Command::new("bash");
+        cmd.arg("-c")
             .arg(&script)
             .current_dir(d)
             .env("PATH", path_with_lucent())
             .env("SLURM_ARRAY_TASK_ID", index.to_string())
-            .env("SLURM_ARRAY_TASK_COUNT", "4")
-            .env_remove("JOB_COMPLETION_INDEX")
-            .output()
-            .unwrap();
-        assert_success(&output);
-    }
-    // Run again (a requeue): finished shards are skipped.
-    let again = Command::new("bash")
-        .arg("-c")
-        .arg(&script)
-        .current_dir(d)
-        .env("PATH", path_with_lucent())
-        .env("SLURM_ARRAY_TASK_ID", "0")
-        .env("SLURM_ARRAY_TASK_COUNT", "4")
-        .output()
+            .env("SLURM_CPUS_PER_TASK", "1")
+            .env_remove("JOB_COMPLETION_INDEX");
+        cmd
+    };
+
+    // Task 0 runs out of time: SIGTERM (the script `exec`s lucent, so it gets the signal).
+    let mut child = task(0)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
         .unwrap();
-    assert_success(&again);
-    let merged = run_in(
-        d,
-        &[
-            "merge",
-            "parts/part-0.exr",
-            "parts/part-1.exr",
-            "parts/part-2.exr",
-            "parts/part-3.exr",
-            "-o",
-            "image.png",
-        ],
+    std::thread::sleep(Duration::from_millis(400));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "task 0 finished too soon to be stopped"
     );
-    assert_success(&merged);
+    signal(&child, "TERM");
+    let output = child.wait_with_output().unwrap();
+    assert_eq!(output.status.code(), Some(130), "{}", stderr(&output));
+    assert!(d.join("parts/part-0.exr.checkpoint").is_file());
+    assert!(
+        !d.join("parts/part-0.exr").exists(),
+        "an unfinished shard leaves no part"
+    );
+
+    // Run again: it resumes; then it is finished, and a third run does nothing.
+    assert_success(&task(0).output().unwrap());
+    assert!(
+        d.join("parts/part-0.exr").is_file() && !d.join("parts/part-0.exr.checkpoint").exists()
+    );
+    let before = std::fs::read(d.join("parts/part-0.exr")).unwrap();
+    assert_success(&task(0).output().unwrap());
+    assert!(std::fs::read(d.join("parts/part-0.exr")).unwrap() == before);
+    for index in 1..4 {
+        let mut cmd = task(index);
+        cmd.env("SLURM_CPUS_PER_TASK", "0");
+        assert_success(&cmd.output().unwrap());
+    }
+    let parts = [
+        "parts/part-0.exr",
+        "parts/part-1.exr",
+        "parts/part-2.exr",
+        "parts/part-3.exr",
+    ];
+    assert_success(&run_in(
+        d,
+        &[&["merge"][..], &parts, &["-o", "image.png"]].concat(),
+    ));
     assert!(std::fs::read(d.join("image.png")).unwrap() == single_process_png(d));
 }
 
@@ -543,4 +586,44 @@ fn the_kubernetes_job_runs_once_per_completion_index() {
     args.extend(["-o", "image.png"]);
     assert_success(&run_in(d, &args));
     assert!(std::fs::read(d.join("image.png")).unwrap() == single_process_png(d));
+}
+
+/// What can be known before rendering is checked before rendering: nothing is lost at the end.
+#[test]
+fn bad_plans_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let small = ["--width", "40", "--height", "30"];
+    let run = |args: &[&str]| run_in(d, &[&["render"][..], &small, args].concat());
+    assert_refused(
+        &run(&["-o", "a.exr", "--checkpoint", "a.exr"]),
+        "the same file",
+    );
+    assert_refused(&run(&["-o", "no/such/folder/a.png"]), "does not exist");
+    std::fs::write(d.join("b.png.checkpoint"), "anything").unwrap();
+    assert_refused(
+        &run(&["-o", "b.png"]),
+        "lucent render --resume b.png.checkpoint",
+    );
+    assert_eq!(
+        std::fs::read_to_string(d.join("b.png.checkpoint")).unwrap(),
+        "anything"
+    );
+    // 40×30 pixels are 3×2 tiles of 16: at most 6 shards.
+    assert_refused(&run(&["--shard", "0/7", "-o", "c.exr"]), "only 6 tiles");
+    assert_success(&run(&["--shard", "5/6", "-o", "c.exr"]));
+
+    // A film whose header claims an enormous image is refused before its pixels are read.
+    let mut bytes = std::fs::read(d.join("c.exr")).unwrap();
+    let key = b"dataWindow\0box2i\0";
+    let at = bytes.windows(key.len()).position(|w| w == key).unwrap() + key.len() + 4;
+    for (i, v) in [0i32, 0, 65535, 65535].iter().enumerate() {
+        bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    std::fs::write(d.join("huge.exr"), &bytes).unwrap();
+    assert_refused(
+        &run_in(d, &["merge", "huge.exr", "-o", "x.png"]),
+        "huge.exr",
+    );
+    assert_refused(&run_in(d, &["render", "--resume", "huge.exr"]), "huge.exr");
 }

@@ -21,7 +21,9 @@ impl Fingerprint {
         self.add_raw(bytes);
     }
 
-    fn add_raw(&mut self, bytes: &[u8]) {
+    /// Adds `bytes` with no length before them: for a stream whose layout is fixed by what
+    /// came before (such as the pixels of an image of known size).
+    pub fn add_raw(&mut self, bytes: &[u8]) {
         for &b in bytes {
             self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
         }

@@ -24,6 +24,9 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 use thiserror::Error;
 
+/// Samples per pixel in one pass over the tiles (see [`render`]).
+pub const PASS_SAMPLES: u32 = 64;
+
 /// Which share of the work a render does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
@@ -106,6 +109,8 @@ pub struct Rendered {
     pub stats: RenderStats,
     /// False when cancelled before every pixel of the shard got its samples.
     pub complete: bool,
+    /// Fewest and most samples over the pixels of this render's shard.
+    pub samples_range: (u32, u32),
 }
 
 /// Why a render could not run.
@@ -207,36 +212,56 @@ pub fn render(
     let done = AtomicU64::new(0);
     let last_checkpoint = Mutex::new(Instant::now());
 
+    // Passes of at most PASS_SAMPLES samples per pixel keep each work item short, so that
+    // periodic checkpoints hold recent work even at very high sample counts. A pixel's samples
+    // are still taken in the order of their indices.
+    let passes = settings.spp.div_ceil(PASS_SAMPLES);
     pool.install(|| {
-        work.par_iter().for_each(|tile| {
-            if hooks.cancel.load(Ordering::Relaxed) {
-                return;
-            }
-            let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
-            let mut part = lock(&film).region(tile.x0, tile.y0, w, h);
-            let (tile_stats, samples) = render_tile(scene, settings, tile, &mut part, hooks.cancel);
-            lock(&film).store_region(&part, tile.x0, tile.y0);
-            *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
-            (hooks.progress)(done.fetch_add(samples, Ordering::Relaxed) + samples, total);
-            if let Some(c) = &hooks.checkpoint {
-                // One thread at a time, and only when due; the copy is taken under the film's
-                // lock and written outside it.
-                if let Ok(mut last) = last_checkpoint.try_lock()
-                    && last.elapsed() >= c.every
-                {
-                    let snapshot = lock(&film).clone();
-                    (c.write)(&snapshot);
-                    *last = Instant::now();
+        for pass in 0..passes {
+            let upto = settings.spp.min((pass + 1) * PASS_SAMPLES);
+            work.par_iter().for_each(|tile| {
+                if hooks.cancel.load(Ordering::Relaxed) {
+                    return;
                 }
-            }
-        });
+                let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
+                let mut part = lock(&film).region(tile.x0, tile.y0, w, h);
+                let (tile_stats, samples) =
+                    render_tile(scene, settings, tile, upto, &mut part, hooks.cancel);
+                lock(&film).store_region(&part, tile.x0, tile.y0);
+                *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
+                (hooks.progress)(done.fetch_add(samples, Ordering::Relaxed) + samples, total);
+                if let Some(c) = &hooks.checkpoint {
+                    // One thread at a time, only when due, and not once stopping (the caller
+                    // writes the final one); the copy is taken under the film's lock and
+                    // written outside it.
+                    if let Ok(mut last) = last_checkpoint.try_lock()
+                        && last.elapsed() >= c.every
+                        && !hooks.cancel.load(Ordering::Relaxed)
+                    {
+                        let snapshot = lock(&film).clone();
+                        (c.write)(&snapshot);
+                        *last = Instant::now();
+                    }
+                }
+            });
+        }
     });
 
     let rays = stats.into_inner().unwrap_or_else(|e| e.into_inner());
     let film = film.into_inner().unwrap_or_else(|e| e.into_inner());
-    let complete = work
+    let counts = work
         .iter()
-        .all(|t| (t.y0..t.y1).all(|y| (t.x0..t.x1).all(|x| film.samples(x, y) == settings.spp)));
+        .flat_map(|t| (t.y0..t.y1).flat_map(move |y| (t.x0..t.x1).map(move |x| (x, y))));
+    let (least, most) = counts.fold((u32::MAX, 0), |(lo, hi), (x, y)| {
+        let n = film.samples(x, y);
+        (lo.min(n), hi.max(n))
+    });
+    let samples_range = if work.is_empty() {
+        (settings.spp, settings.spp)
+    } else {
+        (least, most)
+    };
+    let complete = samples_range.0 == settings.spp;
     let stats = RenderStats {
         rays,
         samples: rays.camera,
@@ -247,6 +272,7 @@ pub fn render(
         film,
         stats,
         complete,
+        samples_range,
     })
 }
 
@@ -255,12 +281,14 @@ fn lock(m: &Mutex<Film>) -> std::sync::MutexGuard<'_, Film> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// Adds the missing samples of every pixel of `tile` to `part` (the tile's region of the film);
-/// stops between samples when cancelled. Returns the rays traced and the samples taken.
+/// Adds the samples of every pixel of `tile` below index `upto` to `part` (the tile's region of
+/// the film); stops between samples when cancelled. Returns the rays traced and the samples
+/// taken.
 fn render_tile(
     scene: &Scene,
     settings: &RenderSettings,
     tile: &Tile,
+    upto: u32,
     part: &mut Film,
     cancel: &AtomicBool,
 ) -> (RayStats, u64) {
@@ -271,7 +299,7 @@ fn render_tile(
         for x in tile.x0..tile.x1 {
             let pixel = u64::from(y) * width + u64::from(x);
             let (px, py) = (x - tile.x0, y - tile.y0);
-            for s in part.samples(px, py)..settings.spp {
+            for s in part.samples(px, py)..upto {
                 if cancel.load(Ordering::Relaxed) {
                     return (stats, taken);
                 }
