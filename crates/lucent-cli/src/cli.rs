@@ -22,6 +22,8 @@ pub enum Command {
     Info(InfoArgs),
     /// Combine the partial films of a sharded render into one image.
     Merge(MergeArgs),
+    /// Write any scene lucent reads (OBJ, PLY, glTF, Mitsuba XML) as lucent's TOML.
+    Convert(ConvertArgs),
     /// Measure every accelerator on the same rays: build time, memory, million rays per second.
     Bench(BenchArgs),
 }
@@ -71,12 +73,17 @@ pub struct Overrides {
     /// Ray–triangle test (overrides the scene file).
     #[arg(long, value_enum)]
     pub triangle_test: Option<TriangleTestArg>,
+    /// Refuse files named by the scene outside its folder (absolute paths, `..`): for scenes
+    /// from untrusted sources.
+    #[arg(long)]
+    pub sandbox: bool,
 }
 
 /// `lucent render`.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// Scene file (TOML); the built-in default scene when omitted.
+    /// Scene file: lucent's TOML, or OBJ, PLY, glTF (.gltf, .glb) or Mitsuba 3 XML; the
+    /// built-in default scene when omitted.
     pub scene: Option<PathBuf>,
     /// Settings that override the scene file's.
     #[command(flatten)]
@@ -114,6 +121,18 @@ pub struct MergeArgs {
     /// The merged image: .png, .pfm or .exr.
     #[arg(short, long)]
     pub output: PathBuf,
+}
+
+/// `lucent convert`.
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// The scene to convert: .toml, .obj, .ply, .gltf, .glb or Mitsuba .xml.
+    pub input: PathBuf,
+    /// The TOML scene to write; mesh and image files stay where they are, named from its folder.
+    pub output: PathBuf,
+    /// Refuse files named by the scene outside its folder.
+    #[arg(long)]
+    pub sandbox: bool,
 }
 
 /// `lucent info`.

@@ -6,7 +6,7 @@ use anyhow::{anyhow, bail};
 use lucent_scene::desc::IntegratorName;
 use lucent_scene::desc::settings::TriangleTestName;
 use lucent_scene::hash::Fingerprint;
-use lucent_scene::{Loaded, SceneFile, Spanned};
+use lucent_scene::{LoadOptions, Loaded, SceneFile, Spanned};
 use std::path::{Path, PathBuf};
 
 /// A scene loaded with the command line's settings applied.
@@ -22,12 +22,18 @@ pub struct Job {
 impl Job {
     /// Reads and builds the scene at `scene` (or the built-in one) with `overrides` applied.
     pub fn load(scene: Option<&Path>, overrides: &Overrides) -> anyhow::Result<Self> {
+        let options = LoadOptions {
+            sandbox: overrides.sandbox,
+        };
         let mut file = match scene {
-            Some(p) => SceneFile::read(p)?,
+            Some(p) => SceneFile::read_with(p, &options)?,
             None => SceneFile::default_scene(),
         };
         apply(&mut file, overrides);
         let loaded = file.build()?;
+        for w in &loaded.warnings {
+            eprintln!("warning: {w}");
+        }
         Ok(Self {
             scene_path: scene.map(Path::to_path_buf),
             overrides: overrides.clone(),
@@ -168,6 +174,7 @@ impl Overrides {
             "triangle_test",
             self.triangle_test.map(|v| format!("{v:?}").to_lowercase()),
         );
+        put("sandbox", self.sandbox.then(|| "true".to_string()));
         pairs.join(";")
     }
 
@@ -200,6 +207,7 @@ impl Overrides {
                         _ => return Err(bad()),
                     })
                 }
+                "sandbox" => o.sandbox = v == "true",
                 _ => bail!("an unknown setting `{k}`"),
             }
         }
@@ -222,6 +230,7 @@ mod tests {
             seed: Some(u64::MAX),
             accel: Some(lucent::accel::AccelKind::Octree),
             triangle_test: Some(TriangleTestArg::Projection),
+            sandbox: true,
         };
         assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
         assert_eq!(Overrides::from_pairs("").unwrap(), Overrides::default());

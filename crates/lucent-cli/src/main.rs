@@ -2,6 +2,7 @@
 
 mod bench;
 mod cli;
+mod convert;
 mod film_file;
 mod info;
 mod job;
@@ -22,6 +23,7 @@ fn main() -> ExitCode {
         cli::Command::Render(a) => render::run(&a),
         cli::Command::Info(a) => info::run(&a),
         cli::Command::Merge(a) => merge::run(&a),
+        cli::Command::Convert(a) => convert::run(&a),
         cli::Command::Bench(a) => bench::run(&a),
     };
     match result {

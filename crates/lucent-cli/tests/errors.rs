@@ -115,7 +115,7 @@ fn missing_scene_file() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(1));
     assert!(
-        stderr.starts_with("error: no-such-scene.toml: cannot read the scene file:"),
+        stderr.starts_with("error: no-such-scene.toml: no such scene file"),
         "{stderr}"
     );
 }

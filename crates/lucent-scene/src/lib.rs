@@ -7,19 +7,20 @@
 //!
 //! The format is documented in `docs/scene-format.md`.
 
-pub mod bare_mesh;
 pub mod build;
 pub mod desc;
 pub mod error;
+pub mod gltf_file;
 pub mod hash;
+pub mod images;
 pub mod import;
-pub mod materials;
 pub mod mesh_file;
+pub mod mitsuba;
+pub mod mtl;
 pub mod obj;
 pub mod paths;
 pub mod ply;
 
-pub use bare_mesh::bare_mesh_scene;
 pub use build::{Loaded, build};
 pub use desc::SceneDesc;
 pub use error::{LoadError, Source};
@@ -32,28 +33,88 @@ use std::path::{Path, PathBuf};
 /// The built-in default scene: Whitted's 1980 picture (also `examples/whitted.toml`).
 pub const DEFAULT_SCENE: &str = include_str!("../../../examples/whitted.toml");
 
-/// A scene file read and parsed, not yet built (so its settings can still be overridden).
+/// A scene file read and parsed, not yet built (so its settings can still be overridden):
+/// lucent's TOML, or a file of another format imported into the same description.
 #[derive(Clone, Debug)]
 pub struct SceneFile {
     /// The path as given (the default scene: `<built-in default scene>`).
     pub path: PathBuf,
-    /// The folder that relative mesh paths start from.
+    /// The folder that relative file names start from.
     pub base_dir: PathBuf,
-    /// The file's text.
+    /// The file's text (empty for imported files: their errors name lines themselves).
     pub text: String,
     /// The parsed description.
     pub desc: SceneDesc,
+    /// Whether the file gives a camera; if not, one frames the scene's bounds.
+    pub camera_given: bool,
+    /// What the import could not render as written.
+    pub warnings: Vec<String>,
+    /// Path rules for the files it names.
+    pub options: LoadOptions,
+    /// Fingerprint of the files read while importing.
+    imported: u64,
 }
 
+/// The scene formats lucent reads, by extension.
+pub const SCENE_EXTENSIONS: [&str; 6] = ["toml", "obj", "ply", "gltf", "glb", "xml"];
+
 impl SceneFile {
-    /// Reads and parses the TOML scene file at `path`.
+    /// Reads the scene file at `path` (TOML, OBJ, PLY, glTF, GLB or Mitsuba XML).
     pub fn read(path: &Path) -> Result<Self, LoadError> {
-        let bytes = std::fs::read(path)
-            .map_err(|e| LoadError::file(path, format!("cannot read the scene file: {e}")))?;
-        let text = String::from_utf8(bytes)
-            .map_err(|e| LoadError::file(path, format!("the scene file is not UTF-8 text: {e}")))?;
+        Self::read_with(path, &LoadOptions::default())
+    }
+
+    /// [`SceneFile::read`] with path rules.
+    pub fn read_with(path: &Path, options: &LoadOptions) -> Result<Self, LoadError> {
         let base_dir = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
-        Self::parse(path.to_path_buf(), base_dir, text)
+        let ext = mesh_file::extension(path);
+        if !path.is_file() {
+            return Err(LoadError::file(path, "no such scene file"));
+        }
+        let mut inputs = hash::Fingerprint::default();
+        let imported = match ext.as_deref() {
+            Some("toml") | None => None,
+            Some("obj") => Some(import::import_obj(path, options, &mut inputs)?),
+            Some("ply") => Some(import::import_ply(path)),
+            Some("gltf" | "glb") => Some(gltf_file::import_gltf(path, options, &mut inputs)?),
+            Some("xml") => Some(mitsuba::import_mitsuba(path, options, &mut inputs)?),
+            Some(other) => {
+                return Err(LoadError::file(
+                    path,
+                    format!(
+                        "unknown scene format `.{other}` (lucent reads .toml, .obj, .ply, .gltf, .glb and Mitsuba .xml)"
+                    ),
+                ));
+            }
+        };
+        let Some(mut imported) = imported else {
+            let bytes = std::fs::read(path)
+                .map_err(|e| LoadError::file(path, format!("cannot read the scene file: {e}")))?;
+            let text = String::from_utf8(bytes).map_err(|e| {
+                LoadError::file(path, format!("the scene file is not UTF-8 text: {e}"))
+            })?;
+            let mut file = Self::parse(path.to_path_buf(), base_dir, text)?;
+            file.options = *options;
+            return Ok(file);
+        };
+        let desc = &mut imported.desc;
+        let emits = desc
+            .materials
+            .iter()
+            .any(|m| m.get_ref().emission.is_some());
+        if desc.lights.is_empty() && !emits {
+            import::add_default_light(desc);
+        }
+        Ok(Self {
+            path: path.to_path_buf(),
+            base_dir,
+            text: String::new(),
+            desc: imported.desc,
+            camera_given: imported.camera_given,
+            warnings: imported.warnings,
+            options: *options,
+            imported: inputs.value(),
+        })
     }
 
     /// The built-in default scene; relative paths in it start from the working directory.
@@ -90,19 +151,94 @@ impl SceneFile {
             base_dir,
             text,
             desc,
+            camera_given: true,
+            warnings: Vec::new(),
+            options: LoadOptions::default(),
+            imported: 0,
         })
     }
 
-    /// Checks the description and builds the scene.
+    /// Checks the description and builds the scene; a scene without a camera gets one that
+    /// frames its bounds.
     pub fn build(&self) -> Result<Loaded, LoadError> {
-        build(
-            &self.desc,
-            &Source {
-                path: &self.path,
-                text: &self.text,
-            },
-            &self.base_dir,
-        )
+        let source = Source {
+            path: &self.path,
+            text: &self.text,
+        };
+        let mut loaded = build::build_with(&self.desc, &source, &self.base_dir, &self.options)?;
+        if !self.camera_given {
+            let c = self.framing_camera(&loaded);
+            loaded.scene.camera = lucent::camera::Camera::new(
+                c.eye.0,
+                c.look_at.0,
+                c.up.0,
+                c.fov.0,
+                loaded.scene.camera.width(),
+                loaded.scene.camera.height(),
+            )
+            .map_err(|e| LoadError::file(&self.path, e.to_string()))?;
+        }
+        let mut warnings = self.warnings.clone();
+        warnings.append(&mut loaded.warnings);
+        loaded.warnings = warnings;
+        let mut inputs = hash::Fingerprint::default();
+        inputs.add(&loaded.inputs.to_le_bytes());
+        inputs.add(&self.imported.to_le_bytes());
+        loaded.inputs = inputs.value();
+        Ok(loaded)
+    }
+
+    /// The camera a scene without one gets, framing the built scene's bounds.
+    pub fn framing_camera(&self, loaded: &Loaded) -> desc::CameraDesc {
+        let c = &loaded.scene.camera;
+        import::framing_camera(loaded.scene.bounds(), c.width(), c.height())
+    }
+
+    /// Names every file of the description from `dir` instead of the scene's folder (for a
+    /// converted scene written elsewhere): relative when both folders can be resolved, else
+    /// absolute.
+    pub fn rebase(&mut self, dir: &Path) -> std::io::Result<()> {
+        let from = std::path::absolute(&self.base_dir)?;
+        let to = std::path::absolute(dir)?;
+        let rename = |name: &mut String| {
+            let full = from.join(&*name);
+            *name = paths::relative_to(&full, &to)
+                .to_string_lossy()
+                .replace('\\', "/");
+        };
+        let d = &mut self.desc;
+        for o in &mut d.objects {
+            if let Some(f) = o.get_mut().file.as_mut() {
+                rename(f.get_mut());
+            }
+        }
+        for l in &mut d.lights {
+            if let Some(f) = l.get_mut().file.as_mut() {
+                rename(f.get_mut());
+            }
+        }
+        for m in &mut d.materials {
+            let m = m.get_mut();
+            for t in [&mut m.kd, &mut m.reflectance].into_iter().flatten() {
+                if let desc::DiffuseDesc::Image(f) = t {
+                    rename(f);
+                }
+            }
+        }
+        self.base_dir = dir.to_path_buf();
+        Ok(())
+    }
+
+    /// The description as lucent's TOML: an imported scene's own description, with the
+    /// framing camera written out when it had none (its meshes stay in their files).
+    pub fn to_toml(&self, loaded: &Loaded) -> Result<String, LoadError> {
+        let mut desc = self.desc.clone();
+        if !self.camera_given {
+            desc.camera = toml::Spanned::new(0..0, self.framing_camera(loaded));
+        }
+        toml::to_string(&desc).map_err(|e| {
+            LoadError::file(&self.path, format!("cannot write the scene as TOML: {e}"))
+        })
     }
 }
 

@@ -1,48 +1,105 @@
-//! Mesh files by extension: `.obj` (Wavefront) and `.ply` (Stanford).
+//! Mesh files by extension: `.obj` (Wavefront), `.ply` (Stanford), `.gltf` and `.glb` (glTF 2.0).
 
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
+use crate::paths::LoadOptions;
+use glam::Vec3;
+use lucent::Rgb;
+use lucent::film::tonemap::srgb8_to_linear;
 use lucent::shape::Mesh;
 use std::path::Path;
 
 /// The extensions [`read_mesh`] knows.
-pub const MESH_EXTENSIONS: [&str; 2] = ["obj", "ply"];
+pub const MESH_EXTENSIONS: [&str; 4] = ["obj", "ply", "gltf", "glb"];
+
+/// The lower-case extension of `path`.
+pub fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
 
 /// True when `path` has a mesh file's extension.
 pub fn is_mesh_file(path: &Path) -> bool {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| MESH_EXTENSIONS.iter().any(|m| m.eq_ignore_ascii_case(e)))
+    extension(path).is_some_and(|e| MESH_EXTENSIONS.contains(&e.as_str()))
 }
 
-/// The positions and triangles of the mesh file at `path`.
+/// The mesh in the file at `path` (every face; a glTF file's scene placed by its nodes).
 pub fn read_mesh(path: &Path) -> Result<Mesh, LoadError> {
-    read_mesh_fingerprinted(path, &mut Fingerprint::default())
+    read_mesh_part(
+        path,
+        None,
+        &LoadOptions::default(),
+        &mut Fingerprint::default(),
+    )
 }
 
-/// [`read_mesh`], adding the file's bytes to `fingerprint`.
-pub fn read_mesh_fingerprinted(
+/// The mesh of `part` of the file at `path` (see `[[object]] part` in the scene format; `None`:
+/// all of it), adding the bytes read to `fingerprint`.
+pub fn read_mesh_part(
     path: &Path,
+    part: Option<&str>,
+    options: &LoadOptions,
     fingerprint: &mut Fingerprint,
 ) -> Result<Mesh, LoadError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
+    let ext = extension(path);
+    if matches!(ext.as_deref(), Some("gltf" | "glb")) {
+        return crate::gltf_file::read_gltf_part(path, part, options, fingerprint);
+    }
     if !matches!(ext.as_deref(), Some("obj" | "ply")) {
         return Err(LoadError::file(
             path,
-            "unknown mesh format (use .obj or .ply)",
+            "unknown mesh format (use .obj, .ply, .gltf or .glb)",
         ));
     }
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     fingerprint.add(&bytes);
-    if ext.as_deref() == Some("obj") {
-        let m = crate::obj::parse_obj(&String::from_utf8_lossy(&bytes), path)?;
-        Ok(Mesh::new(m.positions, m.triangles))
+    let mesh = if ext.as_deref() == Some("obj") {
+        let obj = crate::obj::parse_obj(&bytes, path)?;
+        match part {
+            None => obj.mesh(None).unwrap_or_default(),
+            Some(name) => obj.mesh(Some(name)).ok_or_else(|| {
+                let used = obj
+                    .used_materials()
+                    .iter()
+                    .map(|m| format!("`{m}`"))
+                    .collect::<Vec<_>>();
+                LoadError::file(
+                    path,
+                    format!(
+                        "no faces use the material `{name}` (parts: {})",
+                        used.join(", ")
+                    ),
+                )
+            })?,
+        }
     } else {
+        if let Some(name) = part {
+            return Err(LoadError::file(
+                path,
+                format!("a PLY file has no parts, but part `{name}` was asked for"),
+            ));
+        }
         let m = crate::ply::parse_ply(&bytes, path)?;
-        Ok(Mesh::new(m.positions, m.triangles))
-    }
+        let mut mesh = Mesh::new(m.positions, m.triangles);
+        mesh.normals = m
+            .normals
+            .unwrap_or_default()
+            .into_iter()
+            .map(Vec3::normalize_or_zero)
+            .collect();
+        // PLY colours are 8-bit (or 0–1) sRGB values, as scanners and tools write them.
+        mesh.colors = m
+            .colors
+            .unwrap_or_default()
+            .into_iter()
+            .map(|c| {
+                Rgb::from(c.map(|v| srgb8_to_linear((v.clamp(0.0, 1.0) * 255.0).round() as u8)))
+            })
+            .collect();
+        mesh
+    };
+    mesh.validate().map_err(|e| LoadError::file(path, e))?;
+    Ok(mesh)
 }

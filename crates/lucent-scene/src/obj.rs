@@ -1,133 +1,401 @@
-//! A minimal Wavefront OBJ reader: vertex positions and polygonal faces.
+//! Wavefront OBJ: positions (with optional vertex colours), texture coordinates, normals,
+//! polygonal faces, `usemtl` materials and `mtllib` libraries.
 //!
-//! Reads `v x y z` and `f a b c ...` (each corner `i`, `i/t`, `i//n` or `i/t/n`; negative
-//! indices count back from the latest vertex); polygons are split into triangle fans. Every
-//! other statement (normals, texture coordinates, groups, materials) is skipped. The full
-//! importer, with materials and normals, is a later piece of work.
+//! Our own reader rather than a crate's: every error names its line, NaN and infinite numbers
+//! are refused, and it streams at a few hundred MB/s (see `docs/import.md`). Faces of any
+//! number of corners are split into triangle fans; each corner is `v`, `v/t`, `v//n` or
+//! `v/t/n`, and negative indices count back from the latest element. Groups, objects and
+//! smoothing groups are read past: lucent splits a file by material only.
 
 use crate::error::LoadError;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
+use lucent::Rgb;
+use lucent::shape::Mesh;
+use std::collections::HashMap;
 use std::path::Path;
 
-/// Positions and triangles read from an OBJ file.
+/// No texture coordinate or normal at a corner.
+const NONE: u32 = u32::MAX;
+
+/// One triangle corner: indices of its position, texture coordinate and normal (`NONE`).
+type Corner = [u32; 3];
+
+/// An OBJ file as read: its elements and triangles, each with the material it was given.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct ObjMesh {
+pub struct ObjFile {
     /// Vertex positions.
     pub positions: Vec<Vec3>,
-    /// Triangles as 0-based vertex indices.
-    pub triangles: Vec<[u32; 3]>,
+    /// Vertex colours (`v x y z r g b`), one per position when any vertex has one.
+    pub colors: Vec<Rgb>,
+    /// Texture coordinates `(u, v)` as the file gives them (`v` up).
+    pub texcoords: Vec<Vec2>,
+    /// Normals as the file gives them.
+    pub normals: Vec<Vec3>,
+    /// Triangles: three corners each.
+    triangles: Vec<[Corner; 3]>,
+    /// The material of each triangle, an index into `materials`.
+    triangle_materials: Vec<u32>,
+    /// The names given to `usemtl`, in order of first use; `""` for faces before any.
+    pub materials: Vec<String>,
+    /// `mtllib` file names, with the line that names them.
+    pub libraries: Vec<(String, usize)>,
 }
 
-/// Reads the OBJ file at `path`.
-pub fn read_obj(path: &Path) -> Result<ObjMesh, LoadError> {
+impl ObjFile {
+    /// Triangles read.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The names of the materials that faces use, in order of first use.
+    pub fn used_materials(&self) -> Vec<&str> {
+        let mut used = vec![false; self.materials.len()];
+        for &m in &self.triangle_materials {
+            used[m as usize] = true;
+        }
+        self.materials
+            .iter()
+            .zip(used)
+            .filter(|(_, u)| *u)
+            .map(|(n, _)| n.as_str())
+            .collect()
+    }
+
+    /// The mesh of the faces whose `usemtl` material is `part` (all faces when `None`), with
+    /// only the vertices they use. Normals are kept when every corner has one; texture
+    /// coordinates when any has (the others get `(0, 0)`), with `v` flipped to grow
+    /// downwards as lucent's meshes expect.
+    pub fn mesh(&self, part: Option<&str>) -> Option<Mesh> {
+        let wanted = match part {
+            None => None,
+            Some(name) => Some(self.materials.iter().position(|m| m == name)? as u32),
+        };
+        let selected = self
+            .triangles
+            .iter()
+            .zip(&self.triangle_materials)
+            .filter(|(_, m)| wanted.is_none_or(|w| w == **m))
+            .map(|(t, _)| t);
+        let mut all_normals = true;
+        let mut any_texcoords = false;
+        let mut count = 0;
+        for t in selected.clone() {
+            count += 1;
+            for c in t {
+                all_normals &= c[2] != NONE;
+                any_texcoords |= c[1] != NONE;
+            }
+        }
+        // One vertex per distinct corner; the key drops what will not be kept.
+        let key = |c: &Corner| {
+            [
+                c[0],
+                if any_texcoords { c[1] } else { NONE },
+                if all_normals { c[2] } else { NONE },
+            ]
+        };
+        let mut index: HashMap<Corner, u32> = HashMap::new();
+        let mut corners: Vec<Corner> = Vec::new();
+        let mut triangles = Vec::with_capacity(count);
+        for t in selected {
+            triangles.push(t.map(|c| {
+                let k = key(&c);
+                *index.entry(k).or_insert_with(|| {
+                    corners.push(k);
+                    corners.len() as u32 - 1
+                })
+            }));
+        }
+        let mut mesh = Mesh::new(
+            corners
+                .iter()
+                .map(|c| self.positions[c[0] as usize])
+                .collect(),
+            triangles,
+        );
+        if all_normals && count > 0 {
+            mesh.normals = corners
+                .iter()
+                .map(|c| self.normals[c[2] as usize].normalize_or_zero())
+                .collect();
+        }
+        if any_texcoords {
+            mesh.uvs = corners
+                .iter()
+                .map(|c| match self.texcoords.get(c[1] as usize) {
+                    Some(t) => Vec2::new(t.x, 1.0 - t.y),
+                    None => Vec2::ZERO,
+                })
+                .collect();
+        }
+        if !self.colors.is_empty() {
+            mesh.colors = corners.iter().map(|c| self.colors[c[0] as usize]).collect();
+        }
+        Some(mesh)
+    }
+}
+
+/// Reads the OBJ file at `path` as one mesh (every face).
+pub fn read_obj(path: &Path) -> Result<Mesh, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
-    parse_obj(&String::from_utf8_lossy(&bytes), path)
+    let file = parse_obj(&bytes, path)?;
+    Ok(file.mesh(None).unwrap_or_default())
 }
 
-/// Parses OBJ text; `path` names it in errors.
-pub fn parse_obj(text: &str, path: &Path) -> Result<ObjMesh, LoadError> {
-    let mut mesh = ObjMesh::default();
-    // Face corners whose index is only checked once every vertex is known: (line, index).
-    let mut forward_refs: Vec<(usize, usize)> = Vec::new();
-    let mut corners: Vec<u32> = Vec::with_capacity(8);
-    for (n, line) in text.lines().enumerate() {
-        let line_no = n + 1;
-        let err = |msg: String| LoadError::line(path, line_no, msg);
-        let mut words = line.split_ascii_whitespace();
-        match words.next() {
-            Some("v") => {
-                let mut xyz = [0.0f32; 3];
-                for (axis, slot) in xyz.iter_mut().enumerate() {
-                    let word = words
-                        .next()
-                        .ok_or_else(|| err(format!("vertex has {axis} coordinates; expected 3")))?;
-                    *slot = word
-                        .parse()
-                        .map_err(|_| err(format!("vertex coordinate `{word}` is not a number")))?;
-                    if !slot.is_finite() {
-                        return Err(err(format!("vertex coordinate `{word}` is not finite")));
-                    }
+/// Numbers of a statement, parsed from `words`.
+fn numbers<'a, const N: usize>(
+    words: &mut impl Iterator<Item = &'a str>,
+    what: &str,
+    line: usize,
+    path: &Path,
+) -> Result<[f32; N], LoadError> {
+    let mut out = [0.0f32; N];
+    for (i, slot) in out.iter_mut().enumerate() {
+        let word = words.next().ok_or_else(|| {
+            LoadError::line(path, line, format!("{what} has {i} numbers; expected {N}"))
+        })?;
+        *slot = number(word, what, line, path)?;
+    }
+    Ok(out)
+}
+
+fn number(word: &str, what: &str, line: usize, path: &Path) -> Result<f32, LoadError> {
+    let v: f32 = word
+        .parse()
+        .map_err(|_| LoadError::line(path, line, format!("{what}: `{word}` is not a number")))?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(LoadError::line(
+            path,
+            line,
+            format!("{what}: `{word}` is not finite"),
+        ))
+    }
+}
+
+/// Resolves a 1-based (or negative, counting back) OBJ index among `count` elements so far.
+fn resolve(
+    text: &str,
+    count: usize,
+    what: &str,
+    line: usize,
+    path: &Path,
+) -> Result<u32, LoadError> {
+    let err = |m: String| LoadError::line(path, line, m);
+    let index: i64 = text
+        .parse()
+        .map_err(|_| err(format!("face corner: `{text}` is not a {what} index")))?;
+    let resolved = match index {
+        0 => return Err(err(format!("{what} index 0: OBJ indices start at 1"))),
+        i if i > 0 => i - 1,
+        i => count as i64 + i,
+    };
+    if resolved < 0 || resolved >= i64::from(NONE) {
+        return Err(err(format!(
+            "{what} index {index} is out of range ({count} so far)"
+        )));
+    }
+    Ok(resolved as u32)
+}
+
+/// Parses OBJ bytes (UTF-8 or any ASCII-compatible encoding); `path` names it in errors.
+pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<ObjFile, LoadError> {
+    let text = String::from_utf8_lossy(bytes);
+    let mut obj = ObjFile::default();
+    let mut material = None::<u32>;
+    // Corners that point past what was read so far are checked at the end: (line, corner).
+    let mut forward: Vec<(usize, Corner)> = Vec::new();
+    let mut polygon: Vec<Corner> = Vec::with_capacity(8);
+    for (n, raw) in text.lines().enumerate() {
+        let line = n + 1;
+        let mut words = raw.split_ascii_whitespace();
+        let Some(keyword) = words.next() else {
+            continue;
+        };
+        match keyword {
+            "v" => {
+                let p = numbers::<3>(&mut words, "vertex", line, path)?;
+                obj.positions.push(Vec3::from_array(p));
+                if let Some(r) = words.next() {
+                    let r = number(r, "vertex colour", line, path)?;
+                    let [g, b] = numbers::<2>(&mut words, "vertex colour", line, path)?;
+                    // Colours start with the first vertex that has one; earlier ones are white.
+                    obj.colors.resize(obj.positions.len() - 1, Rgb::WHITE);
+                    obj.colors.push(Rgb::new(r, g, b));
+                } else if !obj.colors.is_empty() {
+                    obj.colors.push(Rgb::WHITE);
                 }
-                mesh.positions.push(Vec3::from_array(xyz));
             }
-            Some("f") => {
-                corners.clear();
+            "vt" => {
+                let u = number(words.next().unwrap_or(""), "texture coordinate", line, path)?;
+                let v = match words.next() {
+                    Some(w) => number(w, "texture coordinate", line, path)?,
+                    None => 0.0,
+                };
+                obj.texcoords.push(Vec2::new(u, v));
+            }
+            "vn" => {
+                let v = numbers::<3>(&mut words, "normal", line, path)?;
+                obj.normals.push(Vec3::from_array(v));
+            }
+            "f" => {
+                polygon.clear();
                 for word in words {
-                    let index_text = word.split('/').next().unwrap_or("");
-                    let index: i64 = index_text.parse().map_err(|_| {
-                        err(format!(
-                            "face corner `{word}` does not start with a vertex index"
-                        ))
-                    })?;
-                    let count = mesh.positions.len() as i64;
-                    let resolved = match index {
-                        0 => return Err(err("vertex index 0: OBJ indices start at 1".into())),
-                        i if i > 0 => i - 1,
-                        i => count + i,
+                    let mut parts = word.split('/');
+                    let v = resolve(
+                        parts.next().unwrap_or(""),
+                        obj.positions.len(),
+                        "vertex",
+                        line,
+                        path,
+                    )?;
+                    let t = match parts.next() {
+                        None | Some("") => NONE,
+                        Some(s) => {
+                            resolve(s, obj.texcoords.len(), "texture coordinate", line, path)?
+                        }
                     };
-                    if resolved < 0 || resolved >= i64::from(u32::MAX) {
-                        return Err(err(format!(
-                            "vertex index {index} is out of range ({count} vertices so far)"
-                        )));
+                    let nrm = match parts.next() {
+                        None | Some("") => NONE,
+                        Some(s) => resolve(s, obj.normals.len(), "normal", line, path)?,
+                    };
+                    let c = [v, t, nrm];
+                    if v as usize >= obj.positions.len()
+                        || (t != NONE && t as usize >= obj.texcoords.len())
+                        || (nrm != NONE && nrm as usize >= obj.normals.len())
+                    {
+                        forward.push((line, c));
                     }
-                    if resolved >= count {
-                        forward_refs.push((line_no, resolved as usize));
+                    polygon.push(c);
+                }
+                if polygon.len() < 3 {
+                    return Err(LoadError::line(
+                        path,
+                        line,
+                        format!("face has {} corners; at least 3 are needed", polygon.len()),
+                    ));
+                }
+                let m = *material.get_or_insert_with(|| {
+                    obj.materials.push(String::new());
+                    obj.materials.len() as u32 - 1
+                });
+                for k in 1..polygon.len() - 1 {
+                    obj.triangles.push([polygon[0], polygon[k], polygon[k + 1]]);
+                    obj.triangle_materials.push(m);
+                }
+            }
+            "usemtl" => {
+                let name = raw.trim_start()[keyword.len()..].trim().to_string();
+                let m = match obj.materials.iter().position(|x| *x == name) {
+                    Some(i) => i,
+                    None => {
+                        obj.materials.push(name);
+                        obj.materials.len() - 1
                     }
-                    corners.push(resolved as u32);
-                }
-                if corners.len() < 3 {
-                    return Err(err(format!(
-                        "face has {} corners; at least 3 are needed",
-                        corners.len()
-                    )));
-                }
-                for k in 1..corners.len() - 1 {
-                    mesh.triangles
-                        .push([corners[0], corners[k], corners[k + 1]]);
+                };
+                material = Some(m as u32);
+            }
+            "mtllib" => {
+                for name in words {
+                    obj.libraries.push((name.to_string(), line));
                 }
             }
             _ => {}
         }
     }
-    if let Some(&(line, index)) = forward_refs
-        .iter()
-        .find(|&&(_, i)| i >= mesh.positions.len())
-    {
-        let count = mesh.positions.len();
-        return Err(LoadError::line(
-            path,
-            line,
-            format!(
-                "vertex index {} is out of range ({count} vertices)",
-                index + 1
-            ),
-        ));
+    let counts = [obj.positions.len(), obj.texcoords.len(), obj.normals.len()];
+    let names = ["vertex", "texture coordinate", "normal"];
+    for (line, c) in forward {
+        for k in 0..3 {
+            if c[k] != NONE && c[k] as usize >= counts[k] {
+                return Err(LoadError::line(
+                    path,
+                    line,
+                    format!(
+                        "{} index {} is out of range ({} in the file)",
+                        names[k],
+                        c[k] as u64 + 1,
+                        counts[k]
+                    ),
+                ));
+            }
+        }
     }
-    Ok(mesh)
+    Ok(obj)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn parse(text: &str) -> Result<ObjMesh, LoadError> {
-        parse_obj(text, Path::new("t.obj"))
+    fn parse(text: &str) -> Result<ObjFile, LoadError> {
+        parse_obj(text.as_bytes(), Path::new("t.obj"))
     }
 
     #[test]
     fn reads_triangles_quads_and_corner_forms() {
-        let m =
-            parse("# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1/1/1 2//1 3/2 4\n")
+        let obj =
+            parse("# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\nf 1/1/1 2//1 3/2/1 4/1/1\n")
                 .unwrap();
+        assert_eq!(obj.triangle_count(), 2);
+        let m = obj.mesh(None).unwrap();
+        // Corners (1,1,1) (2,-,1) (3,2,1) (4,1,1): four distinct vertices.
         assert_eq!(m.positions.len(), 4);
         assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(m.normals, vec![Vec3::Z; 4]);
+        // `v` flipped: the file's (1, 1) is (1, 0); a corner without one is (0, 0).
+        assert_eq!(
+            m.uvs,
+            vec![
+                Vec2::new(0.0, 1.0),
+                Vec2::ZERO,
+                Vec2::new(1.0, 0.0),
+                Vec2::new(0.0, 1.0)
+            ]
+        );
     }
 
     #[test]
     fn negative_indices_count_back() {
-        let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n").unwrap();
+        let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n")
+            .unwrap()
+            .mesh(None)
+            .unwrap();
         assert_eq!(m.triangles, vec![[0, 1, 2]]);
+    }
+
+    #[test]
+    fn parts_are_materials_and_keep_only_their_vertices() {
+        let text = "mtllib a.mtl b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nusemtl red\nf 2 4 3\nusemtl blue\nf 4 1 2\nusemtl red\nf 1 2 4\n";
+        let obj = parse(text).unwrap();
+        assert_eq!(obj.used_materials(), vec!["", "red", "blue"]);
+        assert_eq!(
+            obj.libraries,
+            vec![("a.mtl".to_string(), 1), ("b.mtl".to_string(), 1)]
+        );
+        let red = obj.mesh(Some("red")).unwrap();
+        assert_eq!(red.triangles.len(), 2);
+        assert_eq!(
+            red.positions,
+            vec![Vec3::X, Vec3::splat(5.0), Vec3::Y, Vec3::ZERO]
+        );
+        assert_eq!(obj.mesh(Some("")).unwrap().positions.len(), 3);
+        assert!(obj.mesh(Some("green")).is_none());
+        // Without normals on every corner, none are kept.
+        let mixed = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3\n").unwrap();
+        assert!(mixed.mesh(None).unwrap().normals.is_empty());
+    }
+
+    #[test]
+    fn vertex_colours_are_read() {
+        let obj = parse("v 0 0 0\nv 1 0 0 1 0 0\nv 0 1 0 0 1 0\nf 1 2 3\n").unwrap();
+        let m = obj.mesh(None).unwrap();
+        assert_eq!(
+            m.colors,
+            vec![Rgb::WHITE, Rgb::new(1.0, 0.0, 0.0), Rgb::new(0.0, 1.0, 0.0)]
+        );
     }
 
     #[test]
@@ -135,34 +403,26 @@ mod tests {
         let e = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n").unwrap_err();
         assert_eq!(
             e.to_string(),
-            "t.obj:4:1: vertex index 7 is out of range (3 vertices)"
+            "t.obj:4:1: vertex index 7 is out of range (3 in the file)"
         );
         let e = parse("v 0 0\n").unwrap_err();
         assert_eq!(e.position, Some((1, 1)));
         assert!(e.message.contains("expected 3"), "{e}");
-        assert!(
-            parse("v 0 nan 0\n")
-                .unwrap_err()
-                .message
-                .contains("not finite")
-        );
-        assert!(
-            parse("v 0 0 0\nf 1 0 1\n")
-                .unwrap_err()
-                .message
-                .contains("start at 1")
-        );
-        assert!(
-            parse("v 0 0 0\nf 1 1\n")
-                .unwrap_err()
-                .message
-                .contains("at least 3")
-        );
-        assert!(
-            parse("v 0 0 0\nf -5 1 1\n")
-                .unwrap_err()
-                .message
-                .contains("out of range")
-        );
+        for (text, needle) in [
+            ("v 0 nan 0\n", "not finite"),
+            ("v 0 0 inf\n", "not finite"),
+            ("v 0 0 0\nf 1 0 1\n", "start at 1"),
+            ("v 0 0 0\nf 1 1\n", "at least 3"),
+            ("v 0 0 0\nf -5 1 1\n", "out of range"),
+            ("v 0 0 0\nf 1/x 1 1\n", "not a texture coordinate index"),
+            (
+                "v 0 0 0\nvn 0 0 1\nf 1//2 1//1 1//1\n",
+                "normal index 2 is out of range",
+            ),
+            ("vt nope\n", "not a number"),
+        ] {
+            let e = parse(text).unwrap_err();
+            assert!(e.message.contains(needle), "{text:?}: {e}");
+        }
     }
 }

@@ -39,6 +39,40 @@ pub fn resolve(base_dir: &Path, name: &str, options: &LoadOptions) -> Result<Pat
     Ok(base_dir.join(rel))
 }
 
+/// `path` named from folder `dir` (both absolute): `../x/y` when they share a root, else
+/// `path` itself.
+pub fn relative_to(path: &Path, dir: &Path) -> PathBuf {
+    let p: Vec<Component> = normalize(path);
+    let d: Vec<Component> = normalize(dir);
+    if p.first() != d.first() {
+        return path.to_path_buf();
+    }
+    let common = p.iter().zip(&d).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..d.len() {
+        out.push("..");
+    }
+    for c in &p[common..] {
+        out.push(c.as_os_str());
+    }
+    out
+}
+
+/// Components with `.` dropped and `..` applied.
+fn normalize(path: &Path) -> Vec<Component<'_>> {
+    let mut out = Vec::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.last(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -64,5 +98,13 @@ mod tests {
                 .contains("absolute")
         );
         assert!(resolve(base, "/etc/passwd", &LoadOptions::default()).is_ok());
+    }
+
+    #[test]
+    fn paths_named_from_another_folder() {
+        let r = |p: &str, d: &str| relative_to(Path::new(p), Path::new(d));
+        assert_eq!(r("/a/b/m.obj", "/a/b"), PathBuf::from("m.obj"));
+        assert_eq!(r("/a/b/m.obj", "/a/c/d"), PathBuf::from("../../b/m.obj"));
+        assert_eq!(r("/a/./b/../m.obj", "/a"), PathBuf::from("m.obj"));
     }
 }

@@ -274,7 +274,7 @@ fn bad_mesh_file_names_the_mesh_files_line() {
     let file = SceneFile::parse(dir.join("s.toml"), dir.clone(), text).unwrap();
     let e = file.build().unwrap_err().to_string();
     assert!(
-        e.ends_with("bad.obj:3:1: vertex index 3 is out of range (2 vertices)"),
+        e.ends_with("bad.obj:3:1: vertex index 3 is out of range (2 in the file)"),
         "{e}"
     );
     std::fs::remove_dir_all(dir).unwrap();

@@ -16,7 +16,7 @@ use crate::cli::BenchArgs;
 use anyhow::{Context, bail};
 use lucent::accel::{AccelKind, TraversalStats, WideTriangleBvh};
 use lucent::scene::Scene;
-use lucent_scene::{SceneFile, Spanned, bare_mesh_scene};
+use lucent_scene::{SceneFile, Spanned};
 use rayon::prelude::*;
 use rays::RaySet;
 use report::{Measurement, Row, SETS};
@@ -236,18 +236,13 @@ fn default_scenes() -> anyhow::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-/// A scene (TOML) or bare mesh (OBJ, PLY) with accelerator `kind`, its camera at 1024×1024.
+/// A scene (any format lucent reads) with accelerator `kind`, its camera at 1024×1024.
 fn load(path: &Path, kind: AccelKind) -> anyhow::Result<Scene> {
-    let loaded = if lucent_scene::mesh_file::is_mesh_file(path) {
-        bare_mesh_scene(path, CAMERA_SIDE, CAMERA_SIDE, kind)?
-    } else {
-        let mut file = SceneFile::read(path)?;
-        file.desc.image.width = Spanned::new(0..0, CAMERA_SIDE);
-        file.desc.image.height = Spanned::new(0..0, CAMERA_SIDE);
-        file.desc.render.accelerator = Spanned::new(0..0, kind.name().to_string());
-        file.build()?
-    };
-    Ok(loaded.scene)
+    let mut file = SceneFile::read(path)?;
+    file.desc.image.width = Spanned::new(0..0, CAMERA_SIDE);
+    file.desc.image.height = Spanned::new(0..0, CAMERA_SIDE);
+    file.desc.render.accelerator = Spanned::new(0..0, kind.name().to_string());
+    Ok(file.build()?.scene)
 }
 
 /// Traces `count` rays of `set`, spread evenly over it, on `threads` threads; closest hit, or

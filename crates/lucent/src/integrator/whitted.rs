@@ -10,7 +10,7 @@
 //! - `S_j`, the shadow term, comes from a ray to the light. An opaque blocker (`kt = 0`) makes
 //!   it 0. A transmissive blocker lets light through, filtered by its `kt` once per surface the
 //!   shadow ray crosses (a glass sphere: `kt²`), without bending it: the shadow of glass is
-//!   lighter, but it shows no caustic.
+//!   lighter, but it shows no caustic. Emitting surfaces (area lights) cast no shadows.
 //! - `Ir` is the colour along the mirror ray `R = I − 2(N·I)N`; `It` the colour along the
 //!   refracted ray of Snell's law ([`crate::optics::refract`]), with `μ = 1/ior` entering the
 //!   material and `ior` leaving it (entering when the ray meets the shape's geometric normal from
@@ -203,7 +203,12 @@ impl Whitted {
             Some(from),
             &mut stats.traversal,
             |material, crossings| {
-                s *= scene.materials[material as usize].kt.powi(crossings as i32);
+                let m = &scene.materials[material as usize];
+                // Emitting surfaces (area lights) cast no shadows: under this integrator their
+                // light comes from a point inside them.
+                if m.ke.is_black() {
+                    s *= m.kt.powi(crossings as i32);
+                }
                 s.is_black()
             },
         );

@@ -123,6 +123,12 @@ impl SceneBuilder {
         self
     }
 
+    /// Adds `c` to the ambient light `Ia`.
+    pub fn add_ambient(&mut self, c: Rgb) -> &mut Self {
+        self.ambient += c;
+        self
+    }
+
     /// Which accelerator to build (at both levels).
     pub fn accelerator(&mut self, kind: AccelKind) -> &mut Self {
         self.accelerator = kind;

@@ -35,6 +35,14 @@ impl ImageTexture {
         self.height
     }
 
+    /// The image with every texel multiplied by `scale`.
+    pub fn scaled(mut self, scale: Rgb) -> Self {
+        for t in &mut self.texels {
+            *t *= scale;
+        }
+        self
+    }
+
     /// The mean of every texel.
     pub fn mean(&self) -> Rgb {
         let sum = self.texels.iter().fold(Rgb::BLACK, |a, &t| a + t);

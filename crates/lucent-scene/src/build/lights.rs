@@ -1,0 +1,158 @@
+//! `[[light]]` tables, and area lights (emitting objects) under the classic integrators.
+
+use super::{Context, refuse_keys, required, span};
+use crate::desc::{FalloffName, LightKind, SceneDesc};
+use crate::error::LoadError;
+use glam::Vec3;
+use lucent::Rgb;
+use lucent::light::{DirectionalLight, Falloff, Light, PointLight, SpotLight};
+
+/// An emitting object's surface: its area and (area-weighted) centre, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmitterSurface {
+    /// Area.
+    pub area: f32,
+    /// Centre.
+    pub centroid: Vec3,
+}
+
+/// Adds every `[[light]]`; an environment light sets the background and the ambient light.
+pub fn add_lights(desc: &SceneDesc, ctx: &mut Context) -> Result<(), LoadError> {
+    let mut environment = None;
+    for l in &desc.lights {
+        let d = l.get_ref();
+        let kind = d.kind.name();
+        let intensity = d.intensity.map_or(Rgb::WHITE, |c| c.0);
+        let keys = [
+            ("position", span(&d.position)),
+            ("falloff", span(&d.falloff)),
+            ("direction", span(&d.direction)),
+            ("cutoff", span(&d.cutoff)),
+            ("cutoff_start", span(&d.cutoff_start)),
+            ("file", span(&d.file)),
+        ];
+        let takes: &[&str] = match d.kind {
+            LightKind::Point => &["position", "falloff"],
+            LightKind::Spot => &["position", "falloff", "direction", "cutoff", "cutoff_start"],
+            LightKind::Directional => &["direction"],
+            LightKind::Environment => &["file"],
+        };
+        let others: Vec<_> = keys
+            .into_iter()
+            .filter(|(k, _)| !takes.contains(k))
+            .collect();
+        refuse_keys(ctx.source, kind, &others)?;
+        let direction = |ctx: &Context| -> Result<Vec3, LoadError> {
+            let dir = required(ctx.source, l.span(), kind, "direction", &d.direction)?;
+            dir.get_ref().0.try_normalize().ok_or_else(|| {
+                ctx.source
+                    .error(dir.span(), "the light's direction must not be zero")
+            })
+        };
+        let point = |ctx: &Context| -> Result<PointLight, LoadError> {
+            let position = required(ctx.source, l.span(), kind, "position", &d.position)?
+                .get_ref()
+                .0;
+            let falloff = match d.falloff.as_ref().map(|f| *f.get_ref()) {
+                None | Some(FalloffName::None) => Falloff::None,
+                Some(FalloffName::Quadratic) => Falloff::Quadratic,
+            };
+            Ok(PointLight {
+                position,
+                intensity,
+                falloff,
+            })
+        };
+        let light = match d.kind {
+            LightKind::Point => Light::Point(point(ctx)?),
+            LightKind::Directional => Light::Directional(DirectionalLight {
+                direction: direction(ctx)?,
+                intensity,
+            }),
+            LightKind::Spot => {
+                let cutoff = required(ctx.source, l.span(), kind, "cutoff", &d.cutoff)?;
+                let outer = cutoff.get_ref().0;
+                if !(outer > 0.0 && outer <= 90.0) {
+                    return Err(ctx.source.error(
+                        cutoff.span(),
+                        "a spot light's cutoff must be in (0, 90] degrees",
+                    ));
+                }
+                let inner = match &d.cutoff_start {
+                    Some(s) if !(s.get_ref().0 >= 0.0 && s.get_ref().0 <= outer) => {
+                        return Err(ctx
+                            .source
+                            .error(s.span(), "cutoff_start must be between 0 and cutoff"));
+                    }
+                    Some(s) => s.get_ref().0,
+                    None => outer,
+                };
+                Light::Spot(SpotLight {
+                    point: point(ctx)?,
+                    direction: direction(ctx)?,
+                    cos_cutoff: outer.to_radians().cos(),
+                    cos_start: inner.to_radians().cos(),
+                })
+            }
+            LightKind::Environment => {
+                if environment.is_some() {
+                    return Err(ctx
+                        .source
+                        .error(l.span(), "a scene has at most one environment light"));
+                }
+                // Under the classic integrators the sky is seen by rays that miss, and lights
+                // surfaces as ambient light of its mean radiance (no shadows).
+                let mean = match &d.file {
+                    Some(file) => {
+                        let id = ctx.image(file.get_ref(), file.span(), intensity)?;
+                        ctx.builder.environment(Some(id));
+                        ctx.image_mean(id)
+                    }
+                    None => {
+                        ctx.builder.background(intensity);
+                        intensity
+                    }
+                };
+                environment = Some(mean);
+                continue;
+            }
+        };
+        ctx.builder.light(light);
+    }
+    if let Some(mean) = environment {
+        ctx.builder.add_ambient(mean);
+        ctx.warnings.push(format!(
+            "{}: the environment light is seen by rays that miss and lights surfaces as ambient light (no shadows) under the classic integrators",
+            ctx.source.path.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Under the classic integrators an area light becomes a point light at its centre with the
+/// same power: a one-sided Lambertian emitter of radiance `L` and area `A` emits `Φ = π·L·A`,
+/// and an isotropic point light of intensity `I = Φ / 4π = L·A / 4` emits as much. Emitting
+/// surfaces cast no shadows (see the Whitted integrator), so the light is not blocked by its
+/// own shape.
+pub fn area_lights_as_points(
+    ctx: &mut Context,
+    emitters: &[(Rgb, EmitterSurface)],
+    integrator: &str,
+) {
+    for (radiance, s) in emitters {
+        ctx.builder.light(Light::Point(PointLight {
+            position: s.centroid,
+            intensity: *radiance * (s.area / 4.0),
+            falloff: Falloff::Quadratic,
+        }));
+    }
+    if !emitters.is_empty() {
+        ctx.warnings.push(format!(
+            "{}: {} area light{} become{} point lights of the same power at their centres under the {integrator} integrator",
+            ctx.source.path.display(),
+            emitters.len(),
+            if emitters.len() > 1 { "s" } else { "" },
+            if emitters.len() > 1 { "" } else { "s" },
+        ));
+    }
+}

@@ -1,0 +1,322 @@
+//! From `SceneDesc` to a render-time `Scene`: names resolved, ranges checked, meshes loaded.
+//!
+//! Every error points at the value at fault in the scene file (or at the line of a mesh file).
+
+mod lights;
+pub mod materials;
+mod objects;
+pub mod shapes;
+
+use crate::desc::settings::TriangleTestName;
+use crate::desc::{IntegratorName, SceneDesc};
+use crate::error::{LoadError, Source};
+use crate::hash::Fingerprint;
+use crate::paths::LoadOptions;
+use lucent::Rgb;
+use lucent::accel::AccelKind;
+use lucent::camera::Camera;
+use lucent::integrator::{Integrator, Whitted};
+use lucent::render::RenderSettings;
+use lucent::scene::{Scene, SceneBuilder};
+use lucent::shape::TriangleTest;
+use std::collections::HashMap;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// Largest image side, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 65_536;
+/// Largest number of pixels in an image: 8192 × 8192. A render holds about 32 bytes per pixel
+/// at its peak (the film's sums and weights, then the linear image and its encoding while the
+/// file is written), 2 GiB at this size.
+pub const MAX_PIXELS: u64 = 1 << 26;
+/// Sphere radii outside this range are refused: in single precision, the square of the radius
+/// would underflow or overflow and the sphere would silently vanish.
+pub const RADIUS_RANGE: std::ops::RangeInclusive<f32> = 1e-8..=1e15;
+/// Largest number of samples per pixel.
+pub const MAX_SAMPLES: u32 = 1 << 20;
+/// Deepest recursion allowed.
+pub const MAX_DEPTH: u32 = 1000;
+
+/// A scene ready to render, with the render settings its file gives.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    /// The scene.
+    pub scene: Scene,
+    /// Integrator, samples and seed from the file (threads: all).
+    pub settings: RenderSettings,
+    /// Fingerprint of the inputs: the scene text and every file read.
+    pub inputs: u64,
+    /// What is rendered other than as written (one line each, naming the file).
+    pub warnings: Vec<String>,
+}
+
+/// What building needs besides the description: where files are, what was read, and the
+/// scene being assembled.
+pub struct Context<'a> {
+    /// The scene file, for errors.
+    pub source: &'a Source<'a>,
+    /// The folder relative file names start from.
+    pub base_dir: &'a Path,
+    /// Path rules (`--sandbox`).
+    pub options: &'a LoadOptions,
+    /// Fingerprint of everything read.
+    pub inputs: Fingerprint,
+    /// Warnings so far.
+    pub warnings: Vec<String>,
+    /// The scene being assembled.
+    pub builder: SceneBuilder,
+    images: HashMap<(PathBuf, [u32; 3]), u32>,
+    image_means: Vec<Rgb>,
+}
+
+impl Context<'_> {
+    /// Resolves a file name from the scene (relative to its folder, within `--sandbox`), or an
+    /// error at `span`.
+    pub fn path(&self, name: &str, span: Range<usize>) -> Result<PathBuf, LoadError> {
+        crate::paths::resolve(self.base_dir, name, self.options)
+            .map_err(|e| self.source.error(span, e))
+    }
+
+    /// The scene's index of the image file `name`, scaled by `scale`, read once.
+    pub fn image(&mut self, name: &str, span: Range<usize>, scale: Rgb) -> Result<u32, LoadError> {
+        let path = self.path(name, span.clone())?;
+        if !path.is_file() {
+            return Err(self
+                .source
+                .error(span, format!("image file `{}` not found", path.display())));
+        }
+        let key = (
+            std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone()),
+            [scale.r, scale.g, scale.b].map(f32::to_bits),
+        );
+        if let Some(&id) = self.images.get(&key) {
+            return Ok(id);
+        }
+        let mut image = crate::images::read_image(&path, &mut self.inputs)?;
+        if scale != Rgb::WHITE {
+            image = image.scaled(scale);
+        }
+        self.image_means.push(image.mean());
+        let id = self.builder.image(image);
+        self.images.insert(key, id);
+        Ok(id)
+    }
+
+    /// The mean colour of image `id`.
+    pub fn image_mean(&self, id: u32) -> Rgb {
+        self.image_means
+            .get(id as usize)
+            .copied()
+            .unwrap_or(Rgb::BLACK)
+    }
+}
+
+/// Builds `desc`, read from `source`; files are found relative to `base_dir`.
+pub fn build(desc: &SceneDesc, source: &Source, base_dir: &Path) -> Result<Loaded, LoadError> {
+    build_with(desc, source, base_dir, &LoadOptions::default())
+}
+
+/// [`build`] with path rules.
+pub fn build_with(
+    desc: &SceneDesc,
+    source: &Source,
+    base_dir: &Path,
+    options: &LoadOptions,
+) -> Result<Loaded, LoadError> {
+    let settings = render_settings(desc, source)?;
+    let cam = desc.camera.get_ref();
+    let (width, height) = (*desc.image.width.get_ref(), *desc.image.height.get_ref());
+    let camera = Camera::new(cam.eye.0, cam.look_at.0, cam.up.0, cam.fov.0, width, height)
+        .map_err(|e| source.error(desc.camera.span(), e.to_string()))?;
+    let mut builder = SceneBuilder::new(camera);
+    builder
+        .background(desc.world.background.0)
+        .ambient(desc.world.ambient.0);
+    let accel = desc.render.accelerator.get_ref().parse::<AccelKind>();
+    builder.accelerator(accel.map_err(|e| source.error(desc.render.accelerator.span(), e))?);
+    builder.triangle_test(match desc.render.triangle_test {
+        TriangleTestName::Watertight => TriangleTest::Watertight,
+        TriangleTestName::Projection => TriangleTest::Projection,
+    });
+    let mut ctx = Context {
+        source,
+        base_dir,
+        options,
+        inputs: Fingerprint::default(),
+        warnings: Vec::new(),
+        builder,
+        images: HashMap::new(),
+        image_means: Vec::new(),
+    };
+    ctx.inputs.add(source.text.as_bytes());
+
+    let mut material_ids = HashMap::new();
+    let mut approximated: Vec<(materials::Approximation, &str)> = Vec::new();
+    for m in &desc.materials {
+        let name = m.get_ref().name.get_ref();
+        if material_ids.contains_key(name.as_str()) {
+            return Err(source.error(
+                m.get_ref().name.span(),
+                format!("a material named `{name}` already exists"),
+            ));
+        }
+        let (material, approx) = materials::whitted_material(m, &mut ctx)?;
+        if let Some(a) = approx {
+            approximated.push((a, name));
+        }
+        material_ids.insert(name.as_str(), (ctx.builder.material(material), material));
+    }
+    if !approximated.is_empty() {
+        let names: Vec<String> = approximated.iter().map(|(_, n)| format!("`{n}`")).collect();
+        ctx.warnings.push(format!(
+            "{}: rough materials {} are rendered smooth (glass) or with a Phong highlight (metal, plastic) by the {} integrator",
+            source.path.display(),
+            names.join(", "),
+            settings.integrator.name()
+        ));
+    }
+
+    lights::add_lights(desc, &mut ctx)?;
+
+    let mut meshes = objects::MeshCache::new();
+    let mut emitters = Vec::new();
+    for o in &desc.objects {
+        let d = o.get_ref();
+        let name = d.material.get_ref();
+        let Some(&(material, m)) = material_ids.get(name.as_str()) else {
+            let known: Vec<_> = desc
+                .materials
+                .iter()
+                .map(|m| m.get_ref().name.get_ref().as_str())
+                .collect();
+            let hint = if known.is_empty() {
+                "none are defined".to_string()
+            } else {
+                format!("known: {}", known.join(", "))
+            };
+            return Err(source.error(
+                d.material.span(),
+                format!("unknown material `{name}` ({hint})"),
+            ));
+        };
+        let emissive = !m.ke.is_black();
+        if let Some(surface) = objects::add_object(&mut ctx, &mut meshes, o, material, emissive)? {
+            emitters.push((m.ke, surface));
+        }
+    }
+    lights::area_lights_as_points(&mut ctx, &emitters, settings.integrator.name());
+
+    let Context {
+        builder,
+        inputs,
+        warnings,
+        ..
+    } = ctx;
+    let scene = builder
+        .build()
+        .map_err(|e| LoadError::file(source.path, e.to_string()))?;
+    Ok(Loaded {
+        scene,
+        settings,
+        inputs: inputs.value(),
+        warnings,
+    })
+}
+
+pub(crate) fn check(
+    source: &Source,
+    span: Range<usize>,
+    ok: bool,
+    message: &str,
+) -> Result<(), LoadError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(source.error(span, message))
+    }
+}
+
+fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, LoadError> {
+    let image = &desc.image;
+    for (v, what) in [(&image.width, "width"), (&image.height, "height")] {
+        let ok = (1..=MAX_IMAGE_SIDE).contains(v.get_ref());
+        check(
+            source,
+            v.span(),
+            ok,
+            &format!("the image {what} must be between 1 and {MAX_IMAGE_SIDE} pixels"),
+        )?;
+    }
+    let pixels = u64::from(*image.width.get_ref()) * u64::from(*image.height.get_ref());
+    let too_many = format!("the image has {pixels} pixels; at most {MAX_PIXELS} are supported");
+    check(source, image.width.span(), pixels <= MAX_PIXELS, &too_many)?;
+    let spp = *image.samples.get_ref();
+    let ok = (1..=MAX_SAMPLES).contains(&spp);
+    check(
+        source,
+        image.samples.span(),
+        ok,
+        &format!("samples must be between 1 and {MAX_SAMPLES}"),
+    )?;
+
+    let r = &desc.render;
+    let max_depth = *r.max_depth.get_ref();
+    check(
+        source,
+        r.max_depth.span(),
+        max_depth <= MAX_DEPTH,
+        &format!("max_depth must be at most {MAX_DEPTH}"),
+    )?;
+    let min_weight = r.min_weight.get_ref().0;
+    check(
+        source,
+        r.min_weight.span(),
+        (0.0..=1.0).contains(&min_weight),
+        "min_weight must be between 0 and 1",
+    )?;
+    let integrator = match r.integrator {
+        IntegratorName::Raycast => Integrator::Raycast,
+        IntegratorName::Whitted => Integrator::Whitted(Whitted {
+            max_depth,
+            min_weight,
+        }),
+    };
+    Ok(RenderSettings {
+        integrator,
+        spp,
+        seed: r.seed,
+        ..RenderSettings::default()
+    })
+}
+
+/// Refuses the keys of `present` that a `kind` does not take.
+pub(crate) fn refuse_keys(
+    source: &Source,
+    kind: &str,
+    present: &[(&str, Option<Range<usize>>)],
+) -> Result<(), LoadError> {
+    match present
+        .iter()
+        .find_map(|(k, span)| span.clone().map(|s| (k, s)))
+    {
+        Some((key, span)) => Err(source.error(span, format!("`{key}` does not apply to a {kind}"))),
+        None => Ok(()),
+    }
+}
+
+/// The value of a required key, or an error at the enclosing table.
+pub(crate) fn required<'a, T>(
+    source: &Source,
+    table: Range<usize>,
+    kind: &str,
+    key: &str,
+    v: &'a Option<Spanned<T>>,
+) -> Result<&'a Spanned<T>, LoadError> {
+    v.as_ref()
+        .ok_or_else(|| source.error(table, format!("a {kind} needs `{key}`")))
+}
+
+pub(crate) fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
+    v.as_ref().map(|s| s.span())
+}

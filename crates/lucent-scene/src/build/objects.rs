@@ -1,0 +1,233 @@
+//! `[[object]]` tables: spheres, planes, triangles, meshes from files, and the unit shapes,
+//! placed by a transform; emitting objects report their surface for area lights.
+
+use super::lights::EmitterSurface;
+use super::{Context, RADIUS_RANGE, check, refuse_keys, required, shapes, span};
+use crate::desc::{ObjectDesc, ObjectKind};
+use crate::error::LoadError;
+use crate::mesh_file::read_mesh_part;
+use glam::{Affine3A, Mat3, Vec3};
+use lucent::shape::{Mesh, Plane, Sphere, triangle};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use toml::Spanned;
+
+/// What a stored mesh is: a file's part, or a unit shape; with how it is read.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct MeshKey {
+    source: PathBuf,
+    part: Option<String>,
+    smooth: bool,
+    flipped: bool,
+}
+
+/// Meshes already stored, with their local surface (for area lights).
+pub type MeshCache = HashMap<MeshKey, (u32, std::sync::Arc<Mesh>)>;
+
+/// Adds the object; returns its surface when `emissive`.
+pub fn add_object(
+    ctx: &mut Context,
+    meshes: &mut MeshCache,
+    o: &Spanned<ObjectDesc>,
+    material: u32,
+    emissive: bool,
+) -> Result<Option<EmitterSurface>, LoadError> {
+    let d = o.get_ref();
+    let kind = d.kind.name();
+    let keys = [
+        ("center", span(&d.center)),
+        ("radius", span(&d.radius)),
+        ("point", span(&d.point)),
+        ("normal", span(&d.normal)),
+        ("vertices", span(&d.vertices)),
+        ("file", span(&d.file)),
+        ("part", span(&d.part)),
+        ("smooth", d.smooth.map(|_| o.span())),
+        ("flip_normals", d.flip_normals.map(|_| o.span())),
+        ("transform", span(&d.transform)),
+        ("translate", span(&d.translate)),
+        ("rotate", span(&d.rotate)),
+        ("scale", span(&d.scale)),
+    ];
+    const PLACED: [&str; 5] = ["flip_normals", "transform", "translate", "rotate", "scale"];
+    let takes: Vec<&str> = match d.kind {
+        ObjectKind::Sphere => vec!["center", "radius"],
+        ObjectKind::Plane => vec!["point", "normal"],
+        ObjectKind::Triangle => vec!["vertices"],
+        ObjectKind::Mesh => ["file", "part", "smooth"]
+            .into_iter()
+            .chain(PLACED)
+            .collect(),
+        ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => PLACED.to_vec(),
+    };
+    let others: Vec<_> = keys
+        .into_iter()
+        .filter(|(k, _)| !takes.contains(k))
+        .collect();
+    refuse_keys(ctx.source, kind, &others)?;
+    let table = o.span();
+    let source = ctx.source;
+    match d.kind {
+        ObjectKind::Sphere => {
+            let center = required(source, table.clone(), kind, "center", &d.center)?
+                .get_ref()
+                .0;
+            let radius = required(source, table, kind, "radius", &d.radius)?;
+            let r = radius.get_ref().0;
+            check(
+                source,
+                radius.span(),
+                r > 0.0,
+                &format!("a sphere's radius must be positive, got {r}"),
+            )?;
+            let (lo, hi) = (RADIUS_RANGE.start(), RADIUS_RANGE.end());
+            let in_range = RADIUS_RANGE.contains(&r);
+            check(
+                source,
+                radius.span(),
+                in_range,
+                &format!("a sphere's radius must be between {lo:e} and {hi:e}, got {r:e}"),
+            )?;
+            ctx.builder.sphere(Sphere { center, radius: r }, material);
+            let area = 4.0 * std::f32::consts::PI * r * r;
+            Ok(emissive.then_some(EmitterSurface {
+                area,
+                centroid: center,
+            }))
+        }
+        ObjectKind::Plane => {
+            let point = required(source, table.clone(), kind, "point", &d.point)?
+                .get_ref()
+                .0;
+            let normal = required(source, table.clone(), kind, "normal", &d.normal)?;
+            let n = normal.get_ref().0;
+            check(
+                source,
+                normal.span(),
+                n != Vec3::ZERO,
+                "a plane's normal must not be zero",
+            )?;
+            if emissive {
+                return Err(source.error(
+                    table,
+                    "an infinite plane cannot emit light: give its material no `emission`",
+                ));
+            }
+            ctx.builder.plane(Plane::new(point, n), material);
+            Ok(None)
+        }
+        ObjectKind::Triangle => {
+            let vertices = required(source, table, kind, "vertices", &d.vertices)?;
+            let v = vertices.get_ref().map(|p| p.0);
+            let ok = triangle::double_area(v) > 0.0;
+            check(
+                source,
+                vertices.span(),
+                ok,
+                "the triangle's vertices are collinear: it has no area",
+            )?;
+            let mesh = Mesh::new(v.to_vec(), vec![[0, 1, 2]]);
+            let surface = emissive.then(|| surface(&mesh, Affine3A::IDENTITY));
+            ctx.builder.mesh(mesh, material);
+            Ok(surface)
+        }
+        ObjectKind::Mesh | ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
+            let transform = placement(ctx, d)?;
+            let flipped = d.flip_normals.unwrap_or(false);
+            let key = if d.kind == ObjectKind::Mesh {
+                let file = required(source, table, kind, "file", &d.file)?;
+                let path = ctx.path(file.get_ref(), file.span())?;
+                if !path.is_file() {
+                    return Err(source.error(
+                        file.span(),
+                        format!("mesh file `{}` not found", path.display()),
+                    ));
+                }
+                MeshKey {
+                    source: std::fs::canonicalize(&path).unwrap_or(path),
+                    part: d.part.as_ref().map(|p| p.get_ref().clone()),
+                    smooth: d.smooth.unwrap_or(true),
+                    flipped,
+                }
+            } else {
+                MeshKey {
+                    source: PathBuf::from(format!("<{kind}>")),
+                    part: None,
+                    smooth: true,
+                    flipped,
+                }
+            };
+            // A mesh placed many times is read and stored once: the objects are instances of it.
+            let (id, mesh) = match meshes.get(&key) {
+                Some(entry) => entry.clone(),
+                None => {
+                    let mut mesh = match d.kind {
+                        ObjectKind::Rectangle => shapes::rectangle(),
+                        ObjectKind::Cube => shapes::cube(),
+                        ObjectKind::Disk => shapes::disk(),
+                        _ => read_mesh_part(
+                            &key.source,
+                            key.part.as_deref(),
+                            ctx.options,
+                            &mut ctx.inputs,
+                        )?,
+                    };
+                    if !key.smooth {
+                        mesh.normals.clear();
+                    }
+                    if flipped {
+                        mesh.flip();
+                    }
+                    let mesh = std::sync::Arc::new(mesh);
+                    let id = ctx.builder.add_mesh((*mesh).clone());
+                    meshes.insert(key, (id, mesh.clone()));
+                    (id, mesh)
+                }
+            };
+            ctx.builder.instance(id, transform, material);
+            Ok(emissive.then(|| surface(&mesh, transform)))
+        }
+    }
+}
+
+/// The object's placement: `transform`, or scale, then rotate about x, y, z, then translate.
+fn placement(ctx: &Context, d: &ObjectDesc) -> Result<Affine3A, LoadError> {
+    if let Some(t) = &d.transform {
+        if d.translate.is_some() || d.rotate.is_some() || d.scale.is_some() {
+            return Err(ctx.source.error(
+                t.span(),
+                "give `transform` or `scale`/`rotate`/`translate`, not both",
+            ));
+        }
+        return Ok(Affine3A::from_mat4(t.get_ref().0));
+    }
+    let scale = d.scale.as_ref().map_or(Vec3::ONE, |s| s.get_ref().0);
+    let deg = d.rotate.as_ref().map_or(Vec3::ZERO, |r| r.get_ref().0);
+    let rotation = Mat3::from_rotation_z(deg.z.to_radians())
+        * Mat3::from_rotation_y(deg.y.to_radians())
+        * Mat3::from_rotation_x(deg.x.to_radians());
+    let translate = d.translate.as_ref().map_or(Vec3::ZERO, |t| t.get_ref().0);
+    Ok(Affine3A::from_translation(translate)
+        * Affine3A::from_mat3(rotation)
+        * Affine3A::from_scale(scale))
+}
+
+/// World-space area and area-weighted centre of `mesh` placed by `transform`.
+fn surface(mesh: &Mesh, transform: Affine3A) -> EmitterSurface {
+    let (mut area, mut weighted) = (0.0f64, glam::DVec3::ZERO);
+    for t in 0..mesh.triangles.len() as u32 {
+        let v = mesh.vertices(t).map(|p| transform.transform_point3(p));
+        let a = 0.5 * f64::from((v[1] - v[0]).cross(v[2] - v[0]).length());
+        area += a;
+        weighted += a * ((v[0] + v[1] + v[2]) / 3.0).as_dvec3();
+    }
+    let centroid = if area > 0.0 {
+        (weighted / area).as_vec3()
+    } else {
+        transform.translation.into()
+    };
+    EmitterSurface {
+        area: area as f32,
+        centroid,
+    }
+}

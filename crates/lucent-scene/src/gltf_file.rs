@@ -1,0 +1,765 @@
+//! glTF 2.0 files — `.gltf` with external or embedded (`data:`) buffers, and binary `.glb` —
+//! as scene descriptions ([`import_gltf`]) and as triangle meshes ([`read_gltf_part`]).
+//!
+//! A mesh of a glTF file is referred to from a description by the file's name and a part:
+//!
+//! ```toml
+//! [[object]]
+//! type = "mesh"
+//! file = "car.glb"
+//! part = "2/0"          # mesh 2, primitive 0, in the mesh's own space
+//! material = "gltf:Paint"
+//! transform = [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]   # the node's world matrix
+//! ```
+//!
+//! What becomes what:
+//!
+//! - **Scene**: the default scene, else scene 0, else every root node. A node's world matrix
+//!   is its parent's times its own (`matrix`, or `T·R·S`).
+//! - **Meshes**: one object per (node, triangle primitive), placed by the node's world matrix;
+//!   a mesh instanced on several nodes gives several objects with the same part. Triangle lists,
+//!   strips and fans are read, indexed (8, 16, 32 bits) or not; `POSITION`, `NORMAL`,
+//!   `TEXCOORD_0` (glTF's convention, kept) and `COLOR_0` (alpha dropped); sparse accessors.
+//!   Points and lines are skipped with a warning.
+//! - **Materials**: named `gltf:<name or index>`, made unique; `gltf:default` (diffuse grey
+//!   0.8) for primitives without one. Metallic-roughness maps to lucent's kinds, tried in order:
+//!
+//!   | glTF factors | lucent |
+//!   | --- | --- |
+//!   | metallic ≥ 0.5 | `conductor` (roughness ≤ 0.05) or `roughconductor`; `specular` = base colour, no `eta`/`k`: an ideal reflector tinted by it |
+//!   | transmission ≥ 0.5 | `dielectric` (roughness ≤ 0.05) or `roughdielectric`; `ior`, `transmittance` = base colour |
+//!   | roughness ≥ 0.5 | `diffuse`; `reflectance` = base colour, or the base colour texture's file |
+//!   | otherwise | `plastic`; `reflectance`, `ior`, and `roughness` unless roughness ≤ 0.05 |
+//!
+//!   `roughness` (GGX α) = glTF roughness², `ior` from KHR_materials_ior (default 1.5); colours
+//!   are linear in both and kept; emissive factor × KHR_materials_emissive_strength →
+//!   `emission`; `doubleSided` → `two_sided`.
+//! - **Lights** (KHR_lights_punctual): photometric to radiometric by [`LUMENS_PER_WATT`]; at
+//!   the node's origin, shining down its −z; quadratic falloff for point and spot lights; spot
+//!   cone angles → `cutoff` (outer) and `cutoff_start` (inner) in degrees.
+//! - **Camera**: the first perspective camera met in the node tree (depth first): eye at the
+//!   node's origin, looking down its −z with +y up, `yfov` in degrees; `aspectRatio` sets the
+//!   image to [`IMAGE_HEIGHT`] pixels high and as wide as the ratio says.
+//!
+//! Not rendered (each gives a warning naming the file): orthographic cameras, skins, morph
+//! targets, animations, alpha blending and masking, textures other than the base colour's,
+//! images embedded in the file, light `range`, extensions other than those above. Nodes whose
+//! world matrix is singular are skipped with a warning.
+//!
+//! Safety: every URI naming a file goes through [`crate::paths::resolve`], so `--sandbox`
+//! holds; the glTF crate never opens a file by itself. Every length and index in the file is
+//! checked against the bytes really there before anything is allocated, and the triangles of a whole scene are capped at 2^28.
+
+mod accessor;
+mod material;
+mod primitive;
+mod source;
+
+use crate::desc::{
+    CameraDesc, FalloffName, Finite, LightDesc, LightKind, Matrix, ObjectDesc, ObjectKind,
+    SceneDesc, Vector,
+};
+use crate::error::LoadError;
+use crate::hash::Fingerprint;
+use crate::import::{Imported, placeholder_camera};
+use crate::paths::{LoadOptions, resolve};
+use glam::{Mat4, Quat, Vec3, Vec4};
+use lucent::Rgb;
+use lucent::shape::Mesh;
+use primitive::Decoded;
+use std::collections::hash_map::Entry;
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// Lumens per watt: the luminous efficacy of 555 nm light, by which the candela is defined.
+///
+/// glTF's lights are photometric: point and spot intensities in candela (lm/sr), directional
+/// ones in lux (lm/m²). lucent's are radiometric: W/sr for point and spot lights (irradiance
+/// `I / d²` with quadratic falloff), W/m² for directional ones. Each glTF intensity, times its
+/// colour, is divided by this: a 683 cd white point light is a lucent point light of intensity
+/// 1 with `falloff = "quadratic"`.
+pub const LUMENS_PER_WATT: f32 = 683.0;
+
+/// Image height in pixels when a camera gives an aspect ratio (the width follows from it).
+pub const IMAGE_HEIGHT: u32 = 600;
+
+/// The extensions read (others listed in `extensionsUsed` give a warning; others listed in
+/// `extensionsRequired` make the file unreadable).
+const SUPPORTED_EXTENSIONS: [&str; 4] = [
+    "KHR_lights_punctual",
+    "KHR_materials_transmission",
+    "KHR_materials_ior",
+    "KHR_materials_emissive_strength",
+];
+
+/// The scene of a .gltf/.glb file as a description: camera, lights, materials, and one mesh
+/// object per (node, primitive).
+///
+/// Every primitive placed in the scene is read (and then dropped), so that broken geometry is
+/// reported here rather than when the scene is built. The bytes of the file and of every
+/// external buffer (up to its declared length) are added to `inputs`.
+pub fn import_gltf(
+    path: &Path,
+    options: &LoadOptions,
+    inputs: &mut Fingerprint,
+) -> Result<Imported, LoadError> {
+    let asset = Asset::open(path, options, inputs)?;
+    let file_name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| LoadError::file(path, "the file's name is not UTF-8 text"))?
+        .to_string();
+    let mut warnings = Vec::new();
+    let mut warn = |s: String| warnings.push(format!("{}: {s}", path.display()));
+    let doc = &asset.doc;
+    for ext in doc.extensions_used() {
+        if !SUPPORTED_EXTENSIONS.contains(&ext) {
+            warn(format!("extension {ext} is not supported; ignored"));
+        }
+    }
+    if doc.scenes().len() > 1 {
+        let used = doc.default_scene().map_or(0, |s| s.index());
+        warn(format!(
+            "the file has {} scenes; only scene {used} is imported",
+            doc.scenes().len()
+        ));
+    }
+    if doc.animations().len() > 0 {
+        warn("animations are not rendered; the nodes' own transforms are used".into());
+    }
+    let (placed, notes) = asset.placed_nodes();
+    notes.into_iter().for_each(&mut warn);
+
+    let (names, default_name) = material_names(doc);
+    let mut used = vec![false; names.len()];
+    let mut default_used = false;
+    let mut decoded: HashMap<(usize, usize), bool> = HashMap::new();
+    let mut objects = Vec::new();
+    let mut lights = Vec::new();
+    let mut camera: Option<(CameraDesc, Option<f32>)> = None;
+    let nodes: Vec<gltf::Node> = doc.nodes().collect();
+    let mut warned_meshes = HashSet::new();
+    for &(i, world) in &placed {
+        let node = &nodes[i];
+        if let Some(mesh) = node.mesh() {
+            if node.skin().is_some() {
+                warn(format!(
+                    "node {i}: its skin is not applied; the mesh is shown unposed"
+                ));
+            }
+            let morphs = mesh.primitives().any(|p| p.morph_targets().len() > 0);
+            if morphs && warned_meshes.insert(mesh.index()) {
+                warn(format!(
+                    "mesh {}: morph targets are not applied",
+                    mesh.index()
+                ));
+            }
+            let placeable = primitive::placeable(&world);
+            if !placeable {
+                warn(format!(
+                    "node {i}: its world matrix is singular, projective or not finite; its mesh {} is skipped",
+                    mesh.index()
+                ));
+            }
+            for prim in mesh.primitives().filter(|_| placeable) {
+                let key = (mesh.index(), prim.index());
+                let triangles = match decoded.get(&key) {
+                    Some(&t) => t,
+                    None => {
+                        let t = match primitive::decode(&asset.buffers, key.0, &prim)
+                            .map_err(|e| asset.error(e))?
+                        {
+                            Decoded::Triangles(_, notes) => {
+                                notes.into_iter().for_each(&mut warn);
+                                true
+                            }
+                            Decoded::Skipped(why) => {
+                                warn(why);
+                                false
+                            }
+                        };
+                        decoded.insert(key, t);
+                        t
+                    }
+                };
+                if !triangles {
+                    continue;
+                }
+                let material = match prim.material().index() {
+                    Some(k) => {
+                        used[k] = true;
+                        &names[k]
+                    }
+                    None => {
+                        default_used = true;
+                        &default_name
+                    }
+                };
+                let mut o = ObjectDesc::new(ObjectKind::Mesh, material);
+                o.file = Some(Spanned::new(0..0, file_name.clone()));
+                o.part = Some(Spanned::new(0..0, format!("{}/{}", key.0, key.1)));
+                o.transform = Some(Spanned::new(0..0, Matrix(world)));
+                objects.push(Spanned::new(0..0, o));
+            }
+        }
+        if let Some(l) = node.light() {
+            match light(&l, world) {
+                Ok((d, notes)) => {
+                    notes
+                        .into_iter()
+                        .for_each(|n| warn(format!("node {i}: light {}: {n}", l.index())));
+                    lights.push(Spanned::new(0..0, d));
+                }
+                Err(why) => warn(format!("node {i}: light {}: {why}; skipped", l.index())),
+            }
+        }
+        if let Some(c) = node.camera() {
+            match (c.projection(), &camera) {
+                (gltf::camera::Projection::Orthographic(_), _) => warn(format!(
+                    "node {i}: camera {} is orthographic, which lucent does not have; ignored",
+                    c.index()
+                )),
+                (gltf::camera::Projection::Perspective(_), Some(_)) => warn(format!(
+                    "node {i}: camera {} ignored: the first camera is used",
+                    c.index()
+                )),
+                (gltf::camera::Projection::Perspective(p), None) => match perspective(&p, world) {
+                    Ok(d) => camera = Some((d, p.aspect_ratio())),
+                    Err(why) => warn(format!("node {i}: camera {}: {why}; ignored", c.index())),
+                },
+            }
+        }
+    }
+
+    let images = material::Images {
+        root: doc.as_json(),
+        base_dir: &asset.base_dir,
+        options,
+    };
+    let mut materials = Vec::new();
+    for m in doc.materials() {
+        let Some(k) = m.index().filter(|&k| used[k]) else {
+            continue;
+        };
+        let (d, notes) = material::describe(&m, &names[k], &images).map_err(|e| asset.error(e))?;
+        notes.into_iter().for_each(&mut warn);
+        materials.push(Spanned::new(0..0, d));
+    }
+    if default_used {
+        materials.push(Spanned::new(
+            0..0,
+            material::default_material(&default_name),
+        ));
+    }
+
+    let mut desc = SceneDesc {
+        image: Default::default(),
+        camera: placeholder_camera(),
+        world: Default::default(),
+        render: Default::default(),
+        materials,
+        lights,
+        objects,
+    };
+    let camera_given = camera.is_some();
+    if let Some((c, aspect)) = camera {
+        desc.camera = Spanned::new(0..0, c);
+        if let Some(a) = aspect {
+            match image_width(a) {
+                Some(width) => {
+                    desc.image.width = Spanned::new(0..0, width);
+                    desc.image.height = Spanned::new(0..0, IMAGE_HEIGHT);
+                }
+                None => warn(format!(
+                    "the camera's aspect ratio {a} is out of range; the default image size is used"
+                )),
+            }
+        }
+    }
+    if desc.objects.is_empty() {
+        warn("the scene has no triangles".into());
+    }
+    Ok(Imported {
+        desc,
+        camera_given,
+        warnings,
+    })
+}
+
+/// The triangles of `part` (`"MESH/PRIMITIVE"`, indices into the file's meshes, in the mesh's
+/// own space, no node transform), or with `part == None` every primitive of every node of the
+/// file's scene, placed by the node transforms (world space), merged into one mesh.
+///
+/// In the merged mesh, normals are moved by the inverse transpose of the node's matrix, the
+/// triangles of mirroring nodes (negative determinant) are turned around so that their front
+/// stays their front, normals and texture coordinates are kept only when every primitive has
+/// them, and colours are kept when any has them (white for the others). Nodes whose matrix is
+/// singular are left out, as [`import_gltf`] leaves them out.
+///
+/// The bytes of the file and of every external buffer (up to its declared length) are added to
+/// `inputs`.
+pub fn read_gltf_part(
+    path: &Path,
+    part: Option<&str>,
+    options: &LoadOptions,
+    inputs: &mut Fingerprint,
+) -> Result<Mesh, LoadError> {
+    let asset = Asset::open(path, options, inputs)?;
+    let doc = &asset.doc;
+    if let Some(part) = part {
+        let (m, p) = part
+            .split_once('/')
+            .and_then(|(m, p)| Some((m.trim().parse().ok()?, p.trim().parse().ok()?)))
+            .ok_or_else(|| {
+                asset.error(format!(
+                    "part `{part}` is not MESH/PRIMITIVE (two indices, like `0/1`)"
+                ))
+            })?;
+        let mesh = doc.meshes().nth(m).ok_or_else(|| {
+            asset.error(format!(
+                "part `{part}`: there is no mesh {m} (the file has {})",
+                doc.meshes().len()
+            ))
+        })?;
+        let prim = mesh.primitives().nth(p).ok_or_else(|| {
+            asset.error(format!(
+                "part `{part}`: mesh {m} has no primitive {p} (it has {})",
+                mesh.primitives().len()
+            ))
+        })?;
+        return match primitive::decode(&asset.buffers, m, &prim).map_err(|e| asset.error(e))? {
+            Decoded::Triangles(mesh, _) => Ok(mesh),
+            Decoded::Skipped(why) => Err(asset.error(why)),
+        };
+    }
+    let (placed, _) = asset.placed_nodes();
+    let nodes: Vec<gltf::Node> = doc.nodes().collect();
+    let mut meshes: HashMap<(usize, usize), Option<Mesh>> = HashMap::new();
+    let mut parts = Vec::new();
+    for &(i, world) in &placed {
+        let Some(mesh) = nodes[i].mesh() else {
+            continue;
+        };
+        if !primitive::placeable(&world) {
+            continue; // as import_gltf does (with a warning there)
+        }
+        for prim in mesh.primitives() {
+            let key = (mesh.index(), prim.index());
+            let mesh = match meshes.entry(key) {
+                Entry::Occupied(e) => e.into_mut(),
+                Entry::Vacant(e) => e.insert(
+                    match primitive::decode(&asset.buffers, key.0, &prim)
+                        .map_err(|e| asset.error(e))?
+                    {
+                        Decoded::Triangles(m, _) => Some(m),
+                        Decoded::Skipped(_) => None,
+                    },
+                ),
+            };
+            if mesh.is_some() {
+                parts.push((key, world));
+            }
+        }
+    }
+    if parts.is_empty() {
+        return Err(asset.error("the file's scene has no triangles"));
+    }
+    let placed: Vec<(&Mesh, Mat4)> = parts
+        .iter()
+        .filter_map(|(key, world)| Some((meshes[key].as_ref()?, *world)))
+        .collect();
+    primitive::merge(&placed).map_err(|e| asset.error(e))
+}
+
+/// A glTF document with its buffers loaded.
+struct Asset {
+    path: PathBuf,
+    base_dir: PathBuf,
+    doc: gltf::Document,
+    /// The data of each buffer, exactly its declared `byteLength` long.
+    buffers: Vec<Vec<u8>>,
+}
+
+impl Asset {
+    /// Reads the file and its buffers (external ones through `resolve`, so `--sandbox` holds).
+    fn open(
+        path: &Path,
+        options: &LoadOptions,
+        inputs: &mut Fingerprint,
+    ) -> Result<Self, LoadError> {
+        let bytes = std::fs::read(path)
+            .map_err(|e| LoadError::file(path, format!("cannot read the glTF file: {e}")))?;
+        inputs.add(&bytes);
+        let glb = bytes.starts_with(b"glTF");
+        let (json, bin) = if glb {
+            let g = source::split_glb(&bytes).map_err(|e| LoadError::file(path, e))?;
+            (g.json, g.bin)
+        } else {
+            (&bytes[..], None)
+        };
+        let doc = parse_document(json, path, !glb)?;
+        let base_dir = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
+        let mut buffers = Vec::with_capacity(doc.buffers().len());
+        for buffer in doc.buffers() {
+            let i = buffer.index();
+            let err = |m: String| LoadError::file(path, format!("buffer {i}: {m}"));
+            let (mut data, from) = match buffer.source() {
+                gltf::buffer::Source::Bin => match bin {
+                    Some(bin) if i == 0 => (bin.to_vec(), "the BIN chunk".to_string()),
+                    _ => {
+                        return Err(err(
+                            "it has no URI, and is not the first buffer of a GLB file with a BIN chunk".into(),
+                        ));
+                    }
+                },
+                gltf::buffer::Source::Uri(uri) => match uri.strip_prefix("data:") {
+                    Some(rest) => (
+                        source::decode_data_uri(rest).map_err(err)?,
+                        "its data: URI".to_string(),
+                    ),
+                    None => {
+                        let name = source::file_name_of_uri(uri).map_err(err)?;
+                        let file = resolve(&base_dir, &name, options).map_err(err)?;
+                        let data = read_buffer_file(&file, buffer.length()).map_err(err)?;
+                        inputs.add(&data);
+                        (data, format!("`{}`", file.display()))
+                    }
+                },
+            };
+            let declared = buffer.length();
+            if data.len() < declared {
+                return Err(err(format!(
+                    "it declares {declared} bytes, but {from} holds {}",
+                    data.len()
+                )));
+            }
+            data.truncate(declared);
+            buffers.push(data);
+        }
+        Ok(Self {
+            path: path.to_path_buf(),
+            base_dir,
+            doc,
+            buffers,
+        })
+    }
+
+    fn error(&self, message: impl Into<String>) -> LoadError {
+        LoadError::file(&self.path, message)
+    }
+
+    /// The nodes of the scene (see the module's documentation) in depth-first order, with their
+    /// world matrices, and notes on nodes reached twice (a file whose nodes are not a tree;
+    /// such a node is placed the first time only, which also stops cycles).
+    fn placed_nodes(&self) -> (Vec<(usize, Mat4)>, Vec<String>) {
+        let nodes: Vec<gltf::Node> = self.doc.nodes().collect();
+        let roots: Vec<usize> = match self
+            .doc
+            .default_scene()
+            .or_else(|| self.doc.scenes().next())
+        {
+            Some(scene) => scene.nodes().map(|n| n.index()).collect(),
+            None => {
+                let mut is_child = vec![false; nodes.len()];
+                for c in nodes.iter().flat_map(|n| n.children()) {
+                    is_child[c.index()] = true;
+                }
+                (0..nodes.len()).filter(|&i| !is_child[i]).collect()
+            }
+        };
+        let mut seen = vec![false; nodes.len()];
+        let mut placed = Vec::new();
+        let mut notes = Vec::new();
+        // An explicit stack: a hierarchy thousands of nodes deep must not overflow the call stack.
+        let mut stack: Vec<(usize, Mat4)> =
+            roots.iter().rev().map(|&i| (i, Mat4::IDENTITY)).collect();
+        while let Some((i, parent)) = stack.pop() {
+            if std::mem::replace(&mut seen[i], true) {
+                notes.push(format!(
+                    "node {i} is reached twice (the nodes do not form a tree); placed once"
+                ));
+                continue;
+            }
+            let world = parent * local_matrix(nodes[i].transform());
+            let children: Vec<usize> = nodes[i].children().map(|c| c.index()).collect();
+            stack.extend(children.into_iter().rev().map(|c| (c, world)));
+            placed.push((i, world));
+        }
+        (placed, notes)
+    }
+}
+
+/// The first `declared` bytes of the buffer file `file` (fewer if it is shorter). Only regular
+/// files are read, and no more than declared, so a URI naming a device or a huge file cannot
+/// exhaust memory.
+fn read_buffer_file(file: &Path, declared: usize) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let cannot = |e: std::io::Error| format!("cannot read `{}`: {e}", file.display());
+    let f = std::fs::File::open(file).map_err(cannot)?;
+    if !f.metadata().map_err(cannot)?.is_file() {
+        return Err(format!("`{}` is not a regular file", file.display()));
+    }
+    let mut data = Vec::new();
+    f.take(declared as u64)
+        .read_to_end(&mut data)
+        .map_err(cannot)?;
+    Ok(data)
+}
+
+/// The glTF document in `json`: parsed, its required extensions checked, validated. `text`:
+/// whether `json` is the whole file (a `.gltf`), so that JSON errors can carry a line.
+fn parse_document(json: &[u8], path: &Path, text: bool) -> Result<gltf::Document, LoadError> {
+    let mut root: gltf::json::Root = gltf::json::deserialize::from_slice(json).map_err(|e| {
+        // serde_json's message ends with " at line L column C"; the position goes in its field.
+        let shown = e.to_string();
+        let message = match shown.rfind(" at line ") {
+            Some(at) if e.line() > 0 => &shown[..at],
+            _ => &shown,
+        };
+        LoadError {
+            file: path.to_path_buf(),
+            position: (text && e.line() > 0).then(|| (e.line(), e.column())),
+            message: format!("not valid glTF JSON: {message}"),
+        }
+    })?;
+    if let Some(ext) = root
+        .extensions_required
+        .iter()
+        .find(|e| !SUPPORTED_EXTENSIONS.contains(&e.as_str()))
+    {
+        return Err(LoadError::file(
+            path,
+            format!("the file requires extension {ext}, which is not supported"),
+        ));
+    }
+    forgive_positions(&mut root).map_err(|e| LoadError::file(path, e))?;
+    gltf::Document::from_json(root).map_err(|e| {
+        let message = match e {
+            gltf::Error::Validation(errors) => {
+                let shown: Vec<String> = errors
+                    .iter()
+                    .take(3)
+                    .map(|(at, what)| format!("{at}: {what}"))
+                    .collect();
+                let more = errors.len().saturating_sub(3);
+                let more = if more > 0 {
+                    format!(" (and {more} more)")
+                } else {
+                    String::new()
+                };
+                format!("the glTF document is invalid: {}{more}", shown.join("; "))
+            }
+            other => format!("the glTF document is invalid: {other}"),
+        };
+        LoadError::file(path, message)
+    })
+}
+
+/// Prepares `root` for the glTF crate's validation: refuses a POSITION attribute naming an
+/// accessor that does not exist (the validation would index out of bounds and panic), and
+/// gives POSITION accessors without a valid `min` or `max` a placeholder (the specification
+/// requires them, and the validation refuses files without them, but nothing here uses them).
+fn forgive_positions(root: &mut gltf::json::Root) -> Result<(), String> {
+    use gltf::json::mesh::Semantic;
+    use gltf::json::validation::Checked;
+    let accessors = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let Some(index) = prim.attributes.get(&Checked::Valid(Semantic::Positions)) else {
+                continue;
+            };
+            let Some(a) = root.accessors.get_mut(index.value()) else {
+                return Err(format!(
+                    "mesh {m} primitive {p}: POSITION names accessor {}, but the file has {accessors}",
+                    index.value()
+                ));
+            };
+            for bound in [&mut a.min, &mut a.max] {
+                let valid = bound.as_ref().is_some_and(|v| {
+                    gltf::json::deserialize::from_value::<[f32; 3]>(v.clone()).is_ok()
+                });
+                if !valid {
+                    *bound = Some(gltf::json::Value::from(vec![0.0; 3]));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A node's own transform: its `matrix` (column by column), or `T·R·S`. The rotation is
+/// normalised (writers round); a zero or non-finite one makes the matrix NaN, so the node and
+/// its children are skipped as not placeable.
+fn local_matrix(t: gltf::scene::Transform) -> Mat4 {
+    match t {
+        gltf::scene::Transform::Matrix { matrix } => Mat4::from_cols_array_2d(&matrix),
+        gltf::scene::Transform::Decomposed {
+            translation,
+            rotation,
+            scale,
+        } => match Vec4::from_array(rotation).try_normalize() {
+            Some(q) => Mat4::from_scale_rotation_translation(
+                Vec3::from_array(scale),
+                Quat::from_vec4(q),
+                Vec3::from_array(translation),
+            ),
+            None => Mat4::NAN,
+        },
+    }
+}
+
+/// Material names, `gltf:<name or index>`, made unique with `#2`, `#3`, …; and the default
+/// material's name, unique too.
+fn material_names(doc: &gltf::Document) -> (Vec<String>, String) {
+    let mut taken = HashSet::new();
+    let mut unique = |base: String| {
+        let mut name = base.clone();
+        let mut n = 1;
+        while !taken.insert(name.clone()) {
+            n += 1;
+            name = format!("{base}#{n}");
+        }
+        name
+    };
+    let names = doc
+        .materials()
+        .map(|m| match m.name().filter(|n| !n.is_empty()) {
+            Some(n) => unique(format!("gltf:{n}")),
+            None => unique(format!("gltf:{}", m.index().unwrap_or(0))),
+        })
+        .collect();
+    (names, unique("gltf:default".into()))
+}
+
+/// A punctual light placed by `world`, with notes on what is not rendered; or why it cannot be.
+///
+/// Point and spot lights sit at the node's origin, spot and directional lights shine down the
+/// node's −z. Intensities are divided by [`LUMENS_PER_WATT`]; point and spot lights fall off
+/// quadratically; spot cone angles (radians, from the axis) become `cutoff` (outer) and
+/// `cutoff_start` (inner) in degrees.
+fn light(
+    l: &gltf::khr_lights_punctual::Light,
+    world: Mat4,
+) -> Result<(LightDesc, Vec<String>), String> {
+    use gltf::khr_lights_punctual::Kind;
+    let mut notes = Vec::new();
+    let color = l.color();
+    let intensity = l.intensity();
+    if !(intensity.is_finite() && intensity >= 0.0)
+        || color.iter().any(|c| !(c.is_finite() && *c >= 0.0))
+    {
+        return Err(format!(
+            "its colour {color:?} or intensity {intensity} is negative or not finite"
+        ));
+    }
+    let radiometric = Rgb::from(color) * (intensity / LUMENS_PER_WATT);
+    if !radiometric.is_finite() {
+        return Err(format!("its intensity {intensity} is out of range"));
+    }
+    let kind = match l.kind() {
+        Kind::Point => LightKind::Point,
+        Kind::Spot { .. } => LightKind::Spot,
+        Kind::Directional => LightKind::Directional,
+    };
+    let mut d = LightDesc::new(kind);
+    d.intensity = Some(crate::desc::Color(radiometric));
+    let position = world.w_axis.truncate();
+    let direction = world.transform_vector3(Vec3::NEG_Z).try_normalize();
+    if kind != LightKind::Directional {
+        if !position.is_finite() {
+            return Err("its node's position is not finite".into());
+        }
+        d.position = Some(Spanned::new(0..0, Vector(position)));
+        d.falloff = Some(Spanned::new(0..0, FalloffName::Quadratic));
+        if let Some(range) = l.range() {
+            notes.push(format!(
+                "range {range} is not rendered: the light reaches everywhere"
+            ));
+        }
+    }
+    if kind != LightKind::Point {
+        let direction = direction.ok_or("its node's transform flattens its direction")?;
+        d.direction = Some(Spanned::new(0..0, Vector(direction)));
+    }
+    if let Kind::Spot {
+        inner_cone_angle,
+        outer_cone_angle,
+    } = l.kind()
+    {
+        let outer = outer_cone_angle.to_degrees();
+        if !(outer > 0.0 && outer.is_finite()) {
+            return Err(format!(
+                "its outer cone angle {outer_cone_angle} is not positive"
+            ));
+        }
+        let cutoff = outer.min(90.0);
+        if cutoff < outer {
+            notes.push(format!("outer cone angle {outer}° is cut to 90°"));
+        }
+        let inner = inner_cone_angle.to_degrees();
+        let start = if inner.is_finite() {
+            inner.clamp(0.0, cutoff)
+        } else {
+            0.0
+        };
+        if start != inner {
+            notes.push(format!("inner cone angle {inner}° is taken as {start}°"));
+        }
+        d.cutoff = Some(Spanned::new(0..0, Finite(cutoff)));
+        d.cutoff_start = Some(Spanned::new(0..0, Finite(start)));
+    }
+    Ok((d, notes))
+}
+
+/// A perspective camera placed by `world`: eye at the node's origin, looking down its −z, its
+/// +y up; `yfov` in degrees.
+fn perspective(p: &gltf::camera::Perspective, world: Mat4) -> Result<CameraDesc, String> {
+    let fov = p.yfov().to_degrees();
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(format!(
+            "its vertical field of view {} rad is not between 0 and π",
+            p.yfov()
+        ));
+    }
+    let eye = world.w_axis.truncate();
+    let forward = world.transform_vector3(Vec3::NEG_Z).try_normalize();
+    let up = world.transform_vector3(Vec3::Y).try_normalize();
+    let (Some(forward), Some(up)) = (forward, up) else {
+        return Err("its node's transform flattens the view".into());
+    };
+    if !eye.is_finite() || forward.cross(up).length_squared() < 1e-12 {
+        return Err("its node's transform is degenerate".into());
+    }
+    Ok(CameraDesc {
+        eye: Vector(eye),
+        look_at: Vector(eye + forward),
+        up: Vector(up),
+        fov: Finite(fov),
+    })
+}
+
+/// The image width for `aspect` (width / height) at [`IMAGE_HEIGHT`] pixels high, when it is
+/// a size the renderer takes.
+fn image_width(aspect: f32) -> Option<u32> {
+    let width = (IMAGE_HEIGHT as f32 * aspect).round();
+    (width >= 1.0 && width <= crate::build::MAX_IMAGE_SIDE as f32).then_some(width as u32)
+}
+
+/// Descriptions of the materials used, for tests of the mapping.
+#[cfg(test)]
+fn described(json: &str) -> Vec<(crate::desc::MaterialDesc, Vec<String>)> {
+    let doc = parse_document(json.as_bytes(), Path::new("t.gltf"), true).unwrap();
+    let (names, _) = material_names(&doc);
+    let images = material::Images {
+        root: doc.as_json(),
+        base_dir: Path::new(""),
+        options: &LoadOptions::default(),
+    };
+    doc.materials()
+        .map(|m| material::describe(&m, &names[m.index().unwrap()], &images).unwrap())
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;
