@@ -2,12 +2,15 @@
 
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
+use crate::obj::ObjFile;
 use crate::paths::LoadOptions;
 use glam::Vec3;
 use lucent::Rgb;
 use lucent::film::tonemap::srgb8_to_linear;
 use lucent::shape::Mesh;
-use std::path::Path;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// The extensions [`read_mesh`] knows.
 pub const MESH_EXTENSIONS: [&str; 4] = ["obj", "ply", "gltf", "glb"];
@@ -42,64 +45,105 @@ pub fn read_mesh_part(
     options: &LoadOptions,
     fingerprint: &mut Fingerprint,
 ) -> Result<Mesh, LoadError> {
-    let ext = extension(path);
-    if matches!(ext.as_deref(), Some("gltf" | "glb")) {
-        return crate::gltf_file::read_gltf_part(path, part, options, fingerprint);
+    MeshFiles::default().read_part(path, part, options, fingerprint)
+}
+
+/// Mesh files read so far: an OBJ file split into parts by material is parsed once, not
+/// once per part.
+#[derive(Default)]
+pub struct MeshFiles {
+    obj: HashMap<PathBuf, Arc<ObjFile>>,
+}
+
+impl MeshFiles {
+    /// As [`read_mesh_part`], reusing OBJ files already parsed (their bytes are added to the
+    /// fingerprint the first time only).
+    pub fn read_part(
+        &mut self,
+        path: &Path,
+        part: Option<&str>,
+        options: &LoadOptions,
+        fingerprint: &mut Fingerprint,
+    ) -> Result<Mesh, LoadError> {
+        let ext = extension(path);
+        if matches!(ext.as_deref(), Some("gltf" | "glb")) {
+            return crate::gltf_file::read_gltf_part(path, part, options, fingerprint);
+        }
+        let mesh = match ext.as_deref() {
+            Some("obj") => {
+                let obj = match self.obj.get(path) {
+                    Some(obj) => obj.clone(),
+                    None => {
+                        let obj = Arc::new(crate::obj::parse_obj(&read(path, fingerprint)?, path)?);
+                        self.obj.insert(path.to_path_buf(), obj.clone());
+                        obj
+                    }
+                };
+                obj_part(&obj, part, path)?
+            }
+            Some("ply") => ply_mesh(&read(path, fingerprint)?, part, path)?,
+            _ => {
+                return Err(LoadError::file(
+                    path,
+                    "unknown mesh format (use .obj, .ply, .gltf or .glb)",
+                ));
+            }
+        };
+        mesh.validate().map_err(|e| LoadError::file(path, e))?;
+        Ok(mesh)
     }
-    if !matches!(ext.as_deref(), Some("obj" | "ply")) {
-        return Err(LoadError::file(
-            path,
-            "unknown mesh format (use .obj, .ply, .gltf or .glb)",
-        ));
-    }
+}
+
+fn read(path: &Path, fingerprint: &mut Fingerprint) -> Result<Vec<u8>, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     fingerprint.add(&bytes);
-    let mesh = if ext.as_deref() == Some("obj") {
-        let obj = crate::obj::parse_obj(&bytes, path)?;
-        match part {
-            None => obj.mesh(None).unwrap_or_default(),
-            Some(name) => obj.mesh(Some(name)).ok_or_else(|| {
-                let used = obj
-                    .used_materials()
-                    .iter()
-                    .map(|m| format!("`{m}`"))
-                    .collect::<Vec<_>>();
-                LoadError::file(
-                    path,
-                    format!(
-                        "no faces use the material `{name}` (parts: {})",
-                        used.join(", ")
-                    ),
-                )
-            })?,
-        }
-    } else {
-        if let Some(name) = part {
-            return Err(LoadError::file(
+    Ok(bytes)
+}
+
+/// The faces of an OBJ file that use the material `part` (all when `None`).
+fn obj_part(obj: &ObjFile, part: Option<&str>, path: &Path) -> Result<Mesh, LoadError> {
+    match part {
+        None => Ok(obj.mesh(None).unwrap_or_default()),
+        Some(name) => obj.mesh(Some(name)).ok_or_else(|| {
+            let used = obj
+                .used_materials()
+                .iter()
+                .map(|m| format!("`{m}`"))
+                .collect::<Vec<_>>();
+            LoadError::file(
                 path,
-                format!("a PLY file has no parts, but part `{name}` was asked for"),
-            ));
-        }
-        let m = crate::ply::parse_ply(&bytes, path)?;
-        let mut mesh = Mesh::new(m.positions, m.triangles);
-        mesh.normals = m
-            .normals
-            .unwrap_or_default()
-            .into_iter()
-            .map(Vec3::normalize_or_zero)
-            .collect();
-        // PLY colours are 8-bit (or 0–1) sRGB values, as scanners and tools write them.
-        mesh.colors = m
-            .colors
-            .unwrap_or_default()
-            .into_iter()
-            .map(|c| {
-                Rgb::from(c.map(|v| srgb8_to_linear((v.clamp(0.0, 1.0) * 255.0).round() as u8)))
-            })
-            .collect();
-        mesh
-    };
-    mesh.validate().map_err(|e| LoadError::file(path, e))?;
+                format!(
+                    "no faces use the material `{name}` (parts: {})",
+                    used.join(", ")
+                ),
+            )
+        }),
+    }
+}
+
+/// The mesh of PLY bytes, which have no parts.
+fn ply_mesh(bytes: &[u8], part: Option<&str>, path: &Path) -> Result<Mesh, LoadError> {
+    if let Some(name) = part {
+        return Err(LoadError::file(
+            path,
+            format!("a PLY file has no parts, but part `{name}` was asked for"),
+        ));
+    }
+    let m = crate::ply::parse_ply(bytes, path)?;
+    let mut mesh = Mesh::new(m.positions, m.triangles);
+    mesh.normals = m
+        .normals
+        .unwrap_or_default()
+        .into_iter()
+        .map(Vec3::normalize_or_zero)
+        .collect();
+    // PLY colours are 8-bit (or 0–1) sRGB values, as scanners and tools write them.
+    mesh.colors = m
+        .colors
+        .unwrap_or_default()
+        .into_iter()
+        .map(|c| Rgb::from(c.map(|v| srgb8_to_linear((v.clamp(0.0, 1.0) * 255.0).round() as u8))))
+        .collect();
     Ok(mesh)
 }

@@ -2,7 +2,7 @@
 //! polygonal faces, `usemtl` materials and `mtllib` libraries.
 //!
 //! Our own reader rather than a crate's: every error names its line, NaN and infinite numbers
-//! are refused, and it streams at a few hundred MB/s (see `docs/import.md`). Faces of any
+//! are refused, and it reads about 170 MB/s on one core (see `docs/import.md`). Faces of any
 //! number of corners are split into triangle fans; each corner is `v`, `v/t`, `v//n` or
 //! `v/t/n`, and negative indices count back from the latest element. Groups, objects and
 //! smoothing groups are read past: lucent splits a file by material only.
@@ -11,7 +11,6 @@ use crate::error::LoadError;
 use glam::{Vec2, Vec3};
 use lucent::Rgb;
 use lucent::shape::Mesh;
-use std::collections::HashMap;
 use std::path::Path;
 
 /// No texture coordinate or normal at a corner.
@@ -94,16 +93,26 @@ impl ObjFile {
                 if all_normals { c[2] } else { NONE },
             ]
         };
-        let mut index: HashMap<Corner, u32> = HashMap::new();
+        // Found through the position's chain of corners: faster than hashing, and a
+        // position rarely has more than two texture/normal combinations.
+        let mut first = vec![NONE; self.positions.len()];
+        let mut next: Vec<u32> = Vec::new();
         let mut corners: Vec<Corner> = Vec::new();
         let mut triangles = Vec::with_capacity(count);
         for t in selected {
             triangles.push(t.map(|c| {
                 let k = key(&c);
-                *index.entry(k).or_insert_with(|| {
+                let mut i = first[k[0] as usize];
+                while i != NONE && corners[i as usize] != k {
+                    i = next[i as usize];
+                }
+                if i == NONE {
+                    i = corners.len() as u32;
                     corners.push(k);
-                    corners.len() as u32 - 1
-                })
+                    next.push(first[k[0] as usize]);
+                    first[k[0] as usize] = i;
+                }
+                i
             }));
         }
         let mut mesh = Mesh::new(
@@ -141,6 +150,26 @@ pub fn read_obj(path: &Path) -> Result<Mesh, LoadError> {
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     let file = parse_obj(&bytes, path)?;
     Ok(file.mesh(None).unwrap_or_default())
+}
+
+/// The words of a line, split at ASCII spaces and tabs (a lean `split_ascii_whitespace`).
+struct Words<'a>(&'a str);
+
+impl<'a> Iterator for Words<'a> {
+    type Item = &'a str;
+
+    fn next(&mut self) -> Option<&'a str> {
+        let bytes = self.0.as_bytes();
+        let start = bytes.iter().position(|b| !b.is_ascii_whitespace())?;
+        let end = bytes[start..]
+            .iter()
+            .position(u8::is_ascii_whitespace)
+            .map_or(bytes.len(), |n| start + n);
+        // ASCII bytes are character boundaries, so these slices never fail.
+        let word = &self.0[start..end];
+        self.0 = &self.0[end..];
+        Some(word)
+    }
 }
 
 /// Numbers of a statement, parsed from `words`.
@@ -202,7 +231,11 @@ fn resolve(
 
 /// Parses OBJ bytes (UTF-8 or any ASCII-compatible encoding); `path` names it in errors.
 pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<ObjFile, LoadError> {
-    let text = String::from_utf8_lossy(bytes);
+    // Valid UTF-8 is checked by the fast path; anything else is read as lossy text.
+    let text = match std::str::from_utf8(bytes) {
+        Ok(t) => std::borrow::Cow::Borrowed(t),
+        Err(_) => String::from_utf8_lossy(bytes),
+    };
     let mut obj = ObjFile::default();
     let mut material = None::<u32>;
     // Corners that point past what was read so far are checked at the end: (line, corner).
@@ -210,7 +243,7 @@ pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<ObjFile, LoadError> {
     let mut polygon: Vec<Corner> = Vec::with_capacity(8);
     for (n, raw) in text.lines().enumerate() {
         let line = n + 1;
-        let mut words = raw.split_ascii_whitespace();
+        let mut words = Words(raw);
         let Some(keyword) = words.next() else {
             continue;
         };

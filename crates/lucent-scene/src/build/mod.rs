@@ -66,6 +66,8 @@ pub struct Context<'a> {
     pub warnings: Vec<String>,
     /// The scene being assembled.
     pub builder: SceneBuilder,
+    /// Mesh files parsed so far.
+    pub mesh_files: crate::mesh_file::MeshFiles,
     images: HashMap<(PathBuf, [u32; 3]), u32>,
     image_means: Vec<Rgb>,
 }
@@ -146,6 +148,7 @@ pub fn build_with(
         inputs: Fingerprint::default(),
         warnings: Vec::new(),
         builder,
+        mesh_files: Default::default(),
         images: HashMap::new(),
         image_means: Vec::new(),
     };

@@ -5,7 +5,6 @@ use super::lights::EmitterSurface;
 use super::{Context, RADIUS_RANGE, check, refuse_keys, required, shapes, span};
 use crate::desc::{ObjectDesc, ObjectKind};
 use crate::error::LoadError;
-use crate::mesh_file::read_mesh_part;
 use glam::{Affine3A, Mat3, Vec3};
 use lucent::shape::{Mesh, Plane, Sphere, triangle};
 use std::collections::HashMap;
@@ -134,6 +133,9 @@ pub fn add_object(
         ObjectKind::Mesh | ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
             let transform = placement(ctx, d)?;
             let flipped = d.flip_normals.unwrap_or(false);
+            // Read from the path as the scene names it (errors show it so); cached by its
+            // canonical form, so two names of one file share the mesh.
+            let mut read_from = PathBuf::new();
             let key = if d.kind == ObjectKind::Mesh {
                 let file = required(source, table, kind, "file", &d.file)?;
                 let path = ctx.path(file.get_ref(), file.span())?;
@@ -143,6 +145,7 @@ pub fn add_object(
                         format!("mesh file `{}` not found", path.display()),
                     ));
                 }
+                read_from = path.clone();
                 MeshKey {
                     source: std::fs::canonicalize(&path).unwrap_or(path),
                     part: d.part.as_ref().map(|p| p.get_ref().clone()),
@@ -165,8 +168,8 @@ pub fn add_object(
                         ObjectKind::Rectangle => shapes::rectangle(),
                         ObjectKind::Cube => shapes::cube(),
                         ObjectKind::Disk => shapes::disk(),
-                        _ => read_mesh_part(
-                            &key.source,
+                        _ => ctx.mesh_files.read_part(
+                            &read_from,
                             key.part.as_deref(),
                             ctx.options,
                             &mut ctx.inputs,

@@ -1,0 +1,450 @@
+//! Imported scenes through the command line: every shared mesh renders by itself, broken and
+//! hostile files are refused with the file (and line) at fault, and `lucent convert` writes
+//! TOML that renders the very same image as the original.
+
+mod common;
+
+use common::{assert_success, lucent, read_pfm};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Runs `lucent args...` in `dir` and returns its stderr, which must be one clean error line.
+fn refused_in(dir: &Path, args: &[&str]) -> String {
+    refused_by(lucent().current_dir(dir).args(args))
+}
+
+fn refused_by(command: &mut Command) -> String {
+    let output = command.output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("internal error"),
+        "{stderr}"
+    );
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "one error line: {stderr}");
+    errors[0].to_string()
+}
+
+fn write(dir: &Path, name: &str, contents: impl AsRef<[u8]>) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    std::fs::write(&path, contents).unwrap();
+    path
+}
+
+fn render(scene: &Path, out: &Path, args: &[&str]) {
+    let output = lucent()
+        .arg("render")
+        .arg(scene)
+        .arg("-o")
+        .arg(out)
+        .args(args)
+        .output()
+        .unwrap();
+    assert_success(&output);
+}
+
+#[test]
+fn every_shared_mesh_renders_by_itself() {
+    let meshes = lucent_scene::data_dir().join("meshes");
+    if !meshes.is_dir() {
+        eprintln!("skipping: {} is not here", meshes.display());
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&meshes)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 7);
+    for mesh in names {
+        let out = dir.path().join("out.pfm");
+        render(&mesh, &out, &["--width", "48", "--height", "36"]);
+        let img = read_pfm(&out);
+        // The framing camera puts the mesh in the middle, lit, over the grey background.
+        let background = img.at(0, 0);
+        let covered = img.pixels.iter().filter(|p| **p != background).count();
+        let share = covered as f32 / img.pixels.len() as f32;
+        assert!((0.05..0.9).contains(&share), "{}: {share}", mesh.display());
+        assert!(
+            img.center()[0] > background[0],
+            "{}: the middle is lit",
+            mesh.display()
+        );
+    }
+}
+
+/// A binary little-endian PLY holding `vertices` (claimed) and one triangle.
+fn binary_ply(claimed_vertices: u64, body_vertices: usize) -> Vec<u8> {
+    let mut bytes = format!(
+        "ply\nformat binary_little_endian 1.0\nelement vertex {claimed_vertices}\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    )
+    .into_bytes();
+    for v in 0..body_vertices {
+        for c in [v as f32, (v % 2) as f32, 0.0] {
+            bytes.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    bytes.push(3);
+    for i in [0i32, 1, 2] {
+        bytes.extend_from_slice(&i.to_le_bytes());
+    }
+    bytes
+}
+
+#[test]
+fn a_truncated_binary_ply_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let full = binary_ply(3, 3);
+    write(dir.path(), "whole.ply", &full);
+    let output = lucent()
+        .current_dir(dir.path())
+        .args(["info", "whole.ply"])
+        .output()
+        .unwrap();
+    assert_success(&output);
+    for cut in [full.len() - 1, full.len() - 13, full.len() - 40] {
+        write(dir.path(), "cut.ply", &full[..cut]);
+        let e = refused_in(dir.path(), &["info", "cut.ply"]);
+        assert!(e.starts_with("error: cut.ply:"), "{e}");
+    }
+}
+
+#[test]
+fn a_trillion_vertex_header_is_refused_before_allocating() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "huge.ply", binary_ply(1_000_000_000_000, 3));
+    // Under a 2 GiB address-space limit, allocating for the claim would abort the process.
+    let e = refused_by(
+        Command::new("sh")
+            .current_dir(dir.path())
+            .args(["-c", "ulimit -v 2097152; exec \"$0\" info huge.ply"])
+            .arg(env!("CARGO_BIN_EXE_lucent")),
+    );
+    assert!(
+        e.starts_with("error: huge.ply: the header declares 1000000000000 `vertex` elements"),
+        "{e}"
+    );
+}
+
+#[test]
+fn face_indices_out_of_range_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "a.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n",
+    );
+    let e = refused_in(dir.path(), &["info", "a.obj"]);
+    assert_eq!(
+        e,
+        "error: a.obj:5:1: vertex index 4 is out of range (3 in the file)"
+    );
+    write(
+        dir.path(),
+        "a.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+    );
+    let e = refused_in(dir.path(), &["info", "a.ply"]);
+    assert!(e.starts_with("error: a.ply:"), "{e}");
+    assert!(e.contains("uses vertex 3, but there are 3 vertices"), "{e}");
+}
+
+#[test]
+fn nan_and_infinite_coordinates_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    for (value, word) in [("nan", "nan"), ("inf", "inf"), ("-1e39", "-1e39")] {
+        write(
+            dir.path(),
+            "a.obj",
+            format!("v 0 0 0\nv 1 {value} 0\nv 0 1 0\nf 1 2 3\n"),
+        );
+        let e = refused_in(dir.path(), &["info", "a.obj"]);
+        assert_eq!(
+            e,
+            format!("error: a.obj:2:1: vertex: `{word}` is not finite")
+        );
+    }
+}
+
+#[test]
+fn an_unknown_xml_plugin_names_its_place() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "s.xml",
+        "<scene version=\"3.0.0\">\n    <bsdf type=\"hair\" id=\"h\"/>\n</scene>\n",
+    );
+    let e = refused_in(dir.path(), &["info", "s.xml"]);
+    assert!(
+        e.starts_with("error: s.xml:2:5: unknown bsdf type `hair`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_missing_referenced_file_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "s.xml",
+        "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"gone.obj\"/>\n  </shape>\n</scene>\n",
+    );
+    let e = refused_in(dir.path(), &["info", "s.xml"]);
+    assert!(e.starts_with("error: "), "{e}");
+    assert!(e.contains("gone.obj"), "{e}");
+    write(
+        dir.path(),
+        "s.toml",
+        "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[[material]]\nname = \"m\"\n[[object]]\ntype = \"mesh\"\nfile = \"gone.ply\"\nmaterial = \"m\"\n",
+    );
+    let e = refused_in(dir.path(), &["info", "s.toml"]);
+    assert!(e.starts_with("error: s.toml:8:"), "{e}");
+    assert!(e.contains("gone.ply"), "{e}");
+}
+
+#[test]
+fn an_include_cycle_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "a.xml",
+        "<scene version=\"3.0.0\">\n  <include filename=\"b.xml\"/>\n</scene>\n",
+    );
+    write(
+        dir.path(),
+        "b.xml",
+        "<scene version=\"3.0.0\">\n\n  <include filename=\"a.xml\"/>\n</scene>\n",
+    );
+    let e = refused_in(dir.path(), &["info", "a.xml"]);
+    assert!(e.starts_with("error: b.xml:3:3:"), "{e}");
+    assert!(e.contains("a.xml"), "{e}");
+}
+
+#[test]
+fn the_sandbox_keeps_files_inside_the_scenes_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let outside = write(dir.path(), "outside.obj", triangle);
+    let scene = |file: &str| {
+        format!(
+            "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[[material]]\nname = \"m\"\n[[object]]\ntype = \"mesh\"\nfile = \"{file}\"\nmaterial = \"m\"\n"
+        )
+    };
+    let inner = dir.path().join("scene");
+    for file in ["../outside.obj", &outside.display().to_string()] {
+        write(&inner, "s.toml", scene(file));
+        let output = lucent()
+            .current_dir(&inner)
+            .args(["info", "s.toml"])
+            .output()
+            .unwrap();
+        assert_success(&output);
+        let e = refused_in(&inner, &["info", "--sandbox", "s.toml"]);
+        assert!(e.starts_with("error: s.toml:8:8:"), "{e}");
+        assert!(e.contains("outside"), "{e}");
+    }
+    // An OBJ's material library is held to the same rule, at the line that names it.
+    write(dir.path(), "lib.mtl", "newmtl m\nKd 1 0 0\n");
+    write(
+        &inner,
+        "m.obj",
+        format!("mtllib ../lib.mtl\nusemtl m\n{triangle}"),
+    );
+    let e = refused_in(&inner, &["info", "--sandbox", "m.obj"]);
+    assert!(e.starts_with("error: m.obj:1:"), "{e}");
+}
+
+/// Converts `scene` into a TOML file in another folder and renders both: the images must be
+/// identical to the bit.
+fn assert_converts_exactly(scene: &Path, args: &[&str]) {
+    let dir = scene.parent().unwrap();
+    let original = dir.join("original.pfm");
+    render(scene, &original, args);
+    let converted = dir.join("converted/scene.toml");
+    std::fs::create_dir_all(converted.parent().unwrap()).unwrap();
+    let output = lucent()
+        .arg("convert")
+        .arg(scene)
+        .arg(&converted)
+        .output()
+        .unwrap();
+    assert_success(&output);
+    let again = dir.join("again.pfm");
+    render(&converted, &again, args);
+    let (a, b) = (read_pfm(&original), read_pfm(&again));
+    let lit = a
+        .pixels
+        .iter()
+        .filter(|p| p.iter().any(|&c| c > 0.2))
+        .count();
+    assert!(lit > a.pixels.len() / 20, "the image shows something");
+    assert!(
+        a == b,
+        "{}: the converted scene renders differently:\n{}",
+        scene.display(),
+        std::fs::read_to_string(&converted).unwrap()
+    );
+}
+
+#[test]
+fn obj_with_mtl_converts_to_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let texture = image::RgbImage::from_fn(4, 4, |x, y| {
+        if (x + y) % 2 == 0 {
+            image::Rgb([230, 40, 40])
+        } else {
+            image::Rgb([40, 40, 230])
+        }
+    });
+    std::fs::create_dir_all(dir.path().join("maps")).unwrap();
+    texture.save(dir.path().join("maps/check.png")).unwrap();
+    write(
+        dir.path(),
+        "scene.mtl",
+        "newmtl floor\nKd 1 1 1\nmap_Kd maps/check.png\nillum 1\n\nnewmtl mirror\nKd 0.1 0.1 0.1\nKs 0.9 0.9 0.9\nNs 200\nillum 3\n\nnewmtl glass\nKd 0 0 0\nKs 0.1 0.1 0.1\nTf 0.9 0.9 0.9\nNi 1.5\nillum 7\n",
+    );
+    write(
+        dir.path(),
+        "scene.obj",
+        "mtllib scene.mtl\n\
+         v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n\
+         vt 0 0\nvt 4 0\nvt 4 4\nvt 0 4\nvn 0 1 0\n\
+         usemtl floor\nf 1/1/1 4/4/1 3/3/1 2/2/1\n\
+         v -1.5 0 -1\nv -0.5 0 -1\nv -1 1.5 -1\n\
+         usemtl mirror\nf -3 -2 -1\n\
+         v 0.2 0 0.5\nv 1.2 0 0.5\nv 0.7 0 -0.4\nv 0.7 1 0.2\n\
+         usemtl glass\nf -4 -3 -1\nf -3 -2 -1\nf -2 -4 -1\nf -4 -2 -3\n",
+    );
+    assert_converts_exactly(
+        &dir.path().join("scene.obj"),
+        &["--width", "40", "--height", "30"],
+    );
+}
+
+/// Standard base64 with padding, for a data URI.
+fn base64(bytes: &[u8]) -> String {
+    const ABC: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for chunk in bytes.chunks(3) {
+        let n = chunk
+            .iter()
+            .enumerate()
+            .fold(0u32, |n, (i, &b)| n | (u32::from(b) << (16 - 8 * i)));
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(ABC[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn gltf_converts_to_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut buffer = Vec::new();
+    for p in [
+        [-1.0f32, -1.0, 0.0],
+        [1.0, -1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [-1.0, 1.0, 0.0],
+    ] {
+        for c in p {
+            buffer.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    for i in [0u16, 1, 2, 0, 2, 3] {
+        buffer.extend_from_slice(&i.to_le_bytes());
+    }
+    let gltf = format!(
+        r#"{{
+  "asset": {{"version": "2.0"}},
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "point", "intensity": 3000, "color": [1, 0.9, 0.8]}}]}}}},
+  "scene": 0,
+  "scenes": [{{"nodes": [0, 2, 3]}}],
+  "nodes": [
+    {{"children": [1], "rotation": [0, 0.3826834, 0, 0.9238795], "scale": [1.5, 1, 1]}},
+    {{"mesh": 0, "translation": [0, 0, -0.5]}},
+    {{"camera": 0, "translation": [0, 0, 4]}},
+    {{"translation": [0.5, 1, 3], "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}}
+  ],
+  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.8, "znear": 0.1, "aspectRatio": 1.3333}}}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1, "material": 0}}]}}],
+  "materials": [{{"pbrMetallicRoughness": {{"baseColorFactor": [0.8, 0.3, 0.2, 1], "metallicFactor": 0, "roughnessFactor": 0.9}}}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]}},
+    {{"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}}
+  ],
+  "bufferViews": [
+    {{"buffer": 0, "byteOffset": 0, "byteLength": 48}},
+    {{"buffer": 0, "byteOffset": 48, "byteLength": 12}}
+  ],
+  "buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{}"}}]
+}}"#,
+        buffer.len(),
+        base64(&buffer)
+    );
+    let scene = write(dir.path(), "scene.gltf", gltf);
+    assert_converts_exactly(&scene, &["--width", "40", "--height", "30"]);
+}
+
+#[test]
+fn mitsuba_xml_converts_to_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "meshes/quad.obj",
+        "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n",
+    );
+    let scene = write(
+        dir.path(),
+        "scene.xml",
+        r#"<scene version="3.0.0">
+    <default name="res" value="30"/>
+    <sensor type="perspective">
+        <float name="fov" value="45"/>
+        <transform name="to_world">
+            <lookat origin="0, 1, 4" target="0, 0, 0" up="0, 1, 0"/>
+        </transform>
+        <film type="hdrfilm">
+            <integer name="width" value="40"/>
+            <integer name="height" value="$res"/>
+        </film>
+    </sensor>
+    <integrator type="path"><integer name="max_depth" value="4"/></integrator>
+    <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.8, 0.1, 0.1"/></bsdf>
+    <shape type="obj">
+        <string name="filename" value="meshes/quad.obj"/>
+        <transform name="to_world"><scale value="1.5"/><translate z="-1"/></transform>
+        <ref id="red"/>
+    </shape>
+    <shape type="sphere">
+        <point name="center" x="0.6" y="0" z="0"/>
+        <float name="radius" value="0.5"/>
+        <bsdf type="conductor"><string name="material" value="Au"/></bsdf>
+    </shape>
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/><translate y="-0.6"/></transform>
+        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></bsdf>
+    </shape>
+    <shape type="sphere">
+        <point name="center" x="-0.7" y="-0.1" z="0.5"/>
+        <float name="radius" value="0.4"/>
+        <bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>
+    </shape>
+    <emitter type="point">
+        <point name="position" x="1" y="3" z="3"/>
+        <rgb name="intensity" value="12"/>
+    </emitter>
+    <emitter type="constant"><rgb name="radiance" value="0.1"/></emitter>
+</scene>
+"#,
+    );
+    assert_converts_exactly(&scene, &[]);
+}

@@ -1,0 +1,129 @@
+//! `<shape>` → `[[object]]`.
+//!
+//! | Mitsuba | lucent |
+//! | --- | --- |
+//! | `obj`, `ply` (`filename`, `face_normals`, `flip_normals`, `to_world`) | `mesh` (`file`, `smooth = false` for face normals, `flip_normals`, `transform`) |
+//! | `sphere` (`center`, `radius`, `to_world`) | `sphere`: `to_world · translate(center) · scale(radius)` must be a similarity |
+//! | `rectangle`, `cube`, `disk` (`to_world`) | the same kinds with `transform`: Mitsuba's and lucent's canonical shapes agree (`[-1, 1]²` at z = 0 facing +z, `[-1, 1]³`, the unit disk at z = 0 facing +z) |
+//!
+//! A sphere's `flip_normals` is not read (lucent's spheres face out), with a warning.
+//!
+//! A shape's nested or referenced `<bsdf>` is its material (none: Mitsuba's default, diffuse
+//! 0.5); a nested `<emitter type="area">` makes a copy of that material emitting its
+//! `radiance`.
+
+use super::Convert;
+use super::bsdf;
+use super::transform::{self, placement};
+use super::xml::Element;
+use crate::build::RADIUS_RANGE;
+use crate::desc::{Finite, ObjectDesc, ObjectKind, Vector};
+use crate::error::LoadError;
+use glam::{DMat4, DVec3};
+use toml::Spanned;
+
+/// The shape types lucent reads.
+pub const TYPES: &[&str] = &["obj", "ply", "sphere", "rectangle", "cube", "disk"];
+
+/// The object of the `<shape>` `el`.
+pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, LoadError> {
+    let p = cx.plugin(el)?;
+    let kind = match p.kind {
+        "obj" | "ply" => ObjectKind::Mesh,
+        "sphere" => ObjectKind::Sphere,
+        "rectangle" => ObjectKind::Rectangle,
+        "cube" => ObjectKind::Cube,
+        "disk" => ObjectKind::Disk,
+        other => return Err(super::unknown_type(el, other)),
+    };
+    let mut o = ObjectDesc::new(kind, "");
+    let to_world = p.transform("to_world")?;
+    let place = |o: &mut ObjectDesc| -> Result<(), LoadError> {
+        if let Some((m, loc)) = to_world
+            && !transform::is_identity(&m)
+        {
+            o.transform = Some(Spanned::new(0..0, placement(&m, loc)?));
+        }
+        Ok(())
+    };
+    match kind {
+        ObjectKind::Mesh => {
+            let (file, loc) = p.required_string("filename")?;
+            o.file = Some(Spanned::new(0..0, cx.file_name(file, loc, "mesh")?));
+            if p.boolean("face_normals")? == Some(true) {
+                o.smooth = Some(false);
+            }
+            place(&mut o)?;
+        }
+        ObjectKind::Sphere => {
+            let center = p.vector("center")?.unwrap_or(DVec3::ZERO);
+            let radius = p.float_or("radius", 1.0)?;
+            if radius <= 0.0 {
+                return Err(el
+                    .loc
+                    .error(format!("a sphere's radius must be positive, got {radius}")));
+            }
+            let m = to_world.map_or(DMat4::IDENTITY, |(m, _)| m)
+                * DMat4::from_translation(center)
+                * DMat4::from_scale(DVec3::splat(radius));
+            let Some(scale) = transform::uniform_scale(&m) else {
+                let at = to_world.map_or(&el.loc, |(_, loc)| loc);
+                return Err(at.error(
+                    "a sphere's to_world must be a similarity (rotation, uniform scale, translation): this one makes an ellipsoid, which lucent does not read",
+                ));
+            };
+            let c = m.transform_point3(DVec3::ZERO).as_vec3();
+            let r = scale as f32;
+            if !c.is_finite() || !r.is_finite() {
+                return Err(el.loc.error("the sphere is beyond single precision"));
+            }
+            if !RADIUS_RANGE.contains(&r) {
+                let (lo, hi) = (RADIUS_RANGE.start(), RADIUS_RANGE.end());
+                return Err(el.loc.error(format!(
+                    "the sphere's radius {r:e} (after to_world) is outside lucent's range, {lo:e} to {hi:e}"
+                )));
+            }
+            o.center = Some(Spanned::new(0..0, Vector(c)));
+            o.radius = Some(Spanned::new(0..0, Finite(r)));
+        }
+        _ => place(&mut o)?,
+    }
+    if p.boolean("flip_normals")? == Some(true) {
+        if kind == ObjectKind::Sphere {
+            p.warn(
+                &el.loc,
+                "`flip_normals` of a sphere is not read: lucent's spheres face outwards (an emitting sphere emits outwards)",
+            );
+        } else {
+            o.flip_normals = Some(true);
+        }
+    }
+
+    let bsdfs = p.take("bsdf");
+    if let Some(extra) = bsdfs.get(1) {
+        return Err(extra.at.error("a shape has one bsdf; this is a second"));
+    }
+    let mut material = match bsdfs.first() {
+        Some(b) => bsdf::material(cx, b.el)?,
+        None => bsdf::default_material(cx),
+    };
+    let emitters = p.take("emitter");
+    if let Some(extra) = emitters.get(1) {
+        return Err(extra.at.error("a shape has one emitter; this is a second"));
+    }
+    if let Some(e) = emitters.first() {
+        let ep = cx.plugin(e.el)?;
+        if ep.kind != "area" {
+            return Err(e.at.error(format!(
+                "a {} emitter cannot be inside a shape; only an area emitter can",
+                ep.kind
+            )));
+        }
+        let radiance = ep.color_or("radiance", 1.0)?;
+        ep.finish(&mut cx.warnings, &[]);
+        material = bsdf::emissive(cx, &material, radiance, e.at);
+    }
+    o.material = Spanned::new(0..0, material);
+    p.finish(&mut cx.warnings, &[]);
+    Ok(o)
+}
