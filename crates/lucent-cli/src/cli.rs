@@ -37,6 +37,15 @@ pub enum IntegratorArg {
     Whitted,
 }
 
+/// How pixels are sampled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum AaArg {
+    /// `--spp` stratified, jittered samples per pixel.
+    Uniform,
+    /// Whitted's adaptive supersampling: rays at pixel corners, split where they differ.
+    Adaptive,
+}
+
 /// Ray–triangle tests selectable on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum TriangleTestArg {
@@ -47,7 +56,7 @@ pub enum TriangleTestArg {
 }
 
 /// Settings of the command line that override the scene file's.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Args)]
+#[derive(Clone, Debug, Default, PartialEq, Args)]
 pub struct Overrides {
     /// Image width in pixels (overrides the scene file).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
@@ -77,6 +86,23 @@ pub struct Overrides {
     /// from untrusted sources.
     #[arg(long)]
     pub sandbox: bool,
+    /// Anti-aliasing: `uniform` (--spp samples per pixel) or `adaptive` (Whitted's corners).
+    #[arg(long, value_enum)]
+    pub aa: Option<AaArg>,
+    /// Adaptive: split a pixel (or sub-pixel) whose corners' display values differ by at least
+    /// this much in a channel, 0 to 1 (0 splits everything). Default 0.05.
+    #[arg(long, value_parser = threshold)]
+    pub aa_threshold: Option<f32>,
+    /// Adaptive: how many times a pixel may be halved, 0 to 8. Default 3.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=8))]
+    pub aa_depth: Option<u32>,
+}
+
+fn threshold(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if v >= 0.0 => Ok(v),
+        _ => Err(format!("`{s}` is not a number ≥ 0")),
+    }
 }
 
 /// `lucent render`.
@@ -110,6 +136,10 @@ pub struct RenderArgs {
     /// and settings come from the checkpoint.
     #[arg(long, value_name = "CHECKPOINT")]
     pub resume: Option<PathBuf>,
+    /// With `--aa adaptive`: also write where the samples went, as a grey PNG (black: the 4
+    /// corners of an unsplit pixel; white: split to the depth limit).
+    #[arg(long, value_name = "PNG")]
+    pub density_map: Option<PathBuf>,
 }
 
 /// `lucent merge`.
@@ -138,7 +168,8 @@ pub struct ConvertArgs {
 /// `lucent info`.
 #[derive(Debug, Args)]
 pub struct InfoArgs {
-    /// Scene file (TOML); the built-in default scene when omitted.
+    /// Scene file (TOML, OBJ, PLY, glTF or Mitsuba XML); the built-in default scene when
+    /// omitted.
     pub scene: Option<PathBuf>,
     /// Settings that override the scene file's.
     #[command(flatten)]

@@ -135,7 +135,7 @@ pub fn import_obj(
                     .parent()
                     .map_or_else(PathBuf::new, Path::to_path_buf);
                 for m in crate::mtl::parse_mtl(&b, &lib_path)? {
-                    library.push((m, dir.clone()));
+                    library.push((m, dir.clone(), lib_path.clone()));
                 }
             }
             Err(e) => warnings.push(format!(
@@ -152,14 +152,14 @@ pub fn import_obj(
         } else {
             format!("obj:{name}")
         };
-        let found = library.iter().find(|(m, _)| m.name == *name);
+        let found = library.iter().find(|(m, _, _)| m.name == *name);
         let material = match found {
-            Some((m, dir)) => {
+            Some((m, dir, lib_path)) => {
                 let texture = match m.texture() {
                     Some(t) => {
                         let rel = dir.join(t).to_string_lossy().replace('\\', "/");
                         crate::paths::resolve(&folder, &rel, options)
-                            .map_err(|e| LoadError::line(path, m.line, e))?;
+                            .map_err(|e| LoadError::line(lib_path, m.line, e))?;
                         Some(rel)
                     }
                     None => None,

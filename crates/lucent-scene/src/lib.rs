@@ -198,7 +198,8 @@ impl SceneFile {
     /// converted scene written elsewhere): relative when both folders can be resolved, else
     /// absolute.
     pub fn rebase(&mut self, dir: &Path) -> std::io::Result<()> {
-        let from = std::path::absolute(&self.base_dir)?;
+        // A scene named without a folder is in the current one.
+        let from = std::path::absolute(Path::new(".").join(&self.base_dir))?;
         let to = std::path::absolute(dir)?;
         let rename = |name: &mut String| {
             let full = from.join(&*name);

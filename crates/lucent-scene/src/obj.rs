@@ -2,7 +2,7 @@
 //! polygonal faces, `usemtl` materials and `mtllib` libraries.
 //!
 //! Our own reader rather than a crate's: every error names its line, NaN and infinite numbers
-//! are refused, and it reads about 170 MB/s on one core (see `docs/import.md`). Faces of any
+//! are refused, and it parses about 169 MiB/s on one core (see `docs/import.md`). Faces of any
 //! number of corners are split into triangle fans; each corner is `v`, `v/t`, `v//n` or
 //! `v/t/n`, and negative indices count back from the latest element. Groups, objects and
 //! smoothing groups are read past: lucent splits a file by material only.
@@ -60,7 +60,8 @@ impl ObjFile {
             .collect()
     }
 
-    /// The mesh of the faces whose `usemtl` material is `part` (all faces when `None`), with
+    /// The mesh of the faces whose `usemtl` material is `part` (all faces when `None`; `None`
+    /// for a part without faces), with
     /// only the vertices they use. Normals are kept when every corner has one; texture
     /// coordinates when any has (the others get `(0, 0)`), with `v` flipped to grow
     /// downwards as lucent's meshes expect.
@@ -84,6 +85,10 @@ impl ObjFile {
                 all_normals &= c[2] != NONE;
                 any_texcoords |= c[1] != NONE;
             }
+        }
+        if part.is_some() && count == 0 {
+            // A material named by `usemtl` but given no faces is no part.
+            return None;
         }
         // One vertex per distinct corner; the key drops what will not be kept.
         let key = |c: &Corner| {
@@ -251,14 +256,34 @@ pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<ObjFile, LoadError> {
             "v" => {
                 let p = numbers::<3>(&mut words, "vertex", line, path)?;
                 obj.positions.push(Vec3::from_array(p));
-                if let Some(r) = words.next() {
-                    let r = number(r, "vertex colour", line, path)?;
-                    let [g, b] = numbers::<2>(&mut words, "vertex colour", line, path)?;
-                    // Colours start with the first vertex that has one; earlier ones are white.
-                    obj.colors.resize(obj.positions.len() - 1, Rgb::WHITE);
-                    obj.colors.push(Rgb::new(r, g, b));
-                } else if !obj.colors.is_empty() {
-                    obj.colors.push(Rgb::WHITE);
+                // After x y z: nothing, a weight `w` (ignored), or a colour `r g b`.
+                let rest: Vec<&str> = words.collect();
+                match rest.len() {
+                    0 | 1 => {
+                        if let Some(w) = rest.first() {
+                            number(w, "vertex weight", line, path)?;
+                        }
+                        if !obj.colors.is_empty() {
+                            obj.colors.push(Rgb::WHITE);
+                        }
+                    }
+                    3 => {
+                        let [r, g, b] =
+                            numbers::<3>(&mut rest.into_iter(), "vertex colour", line, path)?;
+                        // Colours start with the first vertex that has one; earlier ones are white.
+                        obj.colors.resize(obj.positions.len() - 1, Rgb::WHITE);
+                        obj.colors.push(Rgb::new(r, g, b));
+                    }
+                    n => {
+                        return Err(LoadError::line(
+                            path,
+                            line,
+                            format!(
+                                "vertex has {} numbers; expected 3, 4 (x y z w) or 6 (x y z r g b)",
+                                n + 3
+                            ),
+                        ));
+                    }
                 }
             }
             "vt" => {

@@ -367,6 +367,12 @@ impl Reader<'_> {
     }
 
     fn skip_element(&mut self, e: &Element) -> Result<(), LoadError> {
+        // An element without properties takes no bytes, so the size check lets any count
+        // through: without this, `element junk 18446744073709551615` would loop 2^64 times
+        // (unoptimised builds do not remove the empty loop).
+        if e.props.is_empty() {
+            return Ok(());
+        }
         let what = format!("element `{}`", e.name);
         for _ in 0..e.count {
             for p in &e.props {

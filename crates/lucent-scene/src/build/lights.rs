@@ -147,12 +147,17 @@ pub fn area_lights_as_points(
         }));
     }
     if !emitters.is_empty() {
+        let what = if emitters.len() == 1 {
+            "1 area light becomes a point light of the same power at its centre".to_string()
+        } else {
+            format!(
+                "{} area lights become point lights of the same power at their centres",
+                emitters.len()
+            )
+        };
         ctx.warnings.push(format!(
-            "{}: {} area light{} become{} point lights of the same power at their centres under the {integrator} integrator",
+            "{}: {what} under the {integrator} integrator",
             ctx.source.path.display(),
-            emitters.len(),
-            if emitters.len() > 1 { "s" } else { "" },
-            if emitters.len() > 1 { "" } else { "s" },
         ));
     }
 }

@@ -170,6 +170,11 @@ pub fn whitted_material(
                 }
                 (None, Some(eta), k) => conductor_f0(eta.0, k.map_or(Rgb::BLACK, |k| k.0)),
                 (None, None, None) => Rgb::WHITE,
+                (None, None, Some(_)) => {
+                    return Err(ctx
+                        .source
+                        .error(table, "a conductor's `k` needs its `eta` (or give `metal`)"));
+                }
                 _ => {
                     return Err(ctx.source.error(
                         table,

@@ -173,9 +173,11 @@ pub fn build_with(
     if !approximated.is_empty() {
         let names: Vec<String> = approximated.iter().map(|(_, n)| format!("`{n}`")).collect();
         ctx.warnings.push(format!(
-            "{}: rough materials {} are rendered smooth (glass) or with a Phong highlight (metal, plastic) by the {} integrator",
+            "{}: rough material{} {} {} rendered smooth (glass) or with a Phong highlight (metal, plastic) by the {} integrator",
             source.path.display(),
+            if names.len() == 1 { "" } else { "s" },
             names.join(", "),
+            if names.len() == 1 { "is" } else { "are" },
             settings.integrator.name()
         ));
     }
@@ -303,7 +305,14 @@ pub(crate) fn refuse_keys(
         .iter()
         .find_map(|(k, span)| span.clone().map(|s| (k, s)))
     {
-        Some((key, span)) => Err(source.error(span, format!("`{key}` does not apply to a {kind}"))),
+        Some((key, span)) => {
+            let article = if kind.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                "an"
+            } else {
+                "a"
+            };
+            Err(source.error(span, format!("`{key}` does not apply to {article} {kind}")))
+        }
         None => Ok(()),
     }
 }

@@ -79,7 +79,7 @@ pub struct RenderDesc {
     pub min_weight: Spanned<Finite>,
     /// Seed of the random sample positions (default 0).
     pub seed: u64,
-    /// Accelerator name (default `"brute"`).
+    /// Accelerator name (default: the fastest, `"wide"`).
     pub accelerator: Spanned<String>,
     /// `"watertight"` (default) or `"projection"`.
     pub triangle_test: TriangleTestName,

@@ -2,16 +2,23 @@
 //!
 //! Before anything is allocated, the bytes an accessor needs (`offset + stride·(count − 1) +
 //! element size`) are checked against its buffer view, and the view against the bytes its
-//! buffer really holds; an accessor without a view (all zeros, or sparse) is capped at
-//! [`MAX_ELEMENTS`]. So a file cannot make the reader allocate more than a small multiple of
-//! its own size.
+//! buffer really holds; an accessor without a view (zeros, with its sparse elements replaced)
+//! is capped at [`MAX_ZERO_FILLED`] elements. So reading an accessor allocates at most a small
+//! multiple of the bytes that back it, or 16 MiB for one without a view.
 
 use gltf::accessor::sparse::IndexType;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::buffer::View;
 
-/// Largest number of elements one accessor may have, and of vertices or triangles in one mesh.
+/// Largest number of vertices or triangles in one merged mesh.
 pub(super) const MAX_ELEMENTS: usize = 1 << 28;
+
+/// Largest number of elements of an accessor without a buffer view. Such an accessor is zeros
+/// save its sparse elements, so its count is backed by no bytes: with the general cap, a
+/// 500-byte file could ask for 2^28 zero positions (3 GiB at once, and tens of GiB once
+/// triangulated and built). 2^20 VEC4 floats are 16 MiB; files use view-less accessors for
+/// small sparse edits (morph targets, which are not read here), not for whole meshes.
+pub(super) const MAX_ZERO_FILLED: usize = 1 << 20;
 
 /// The bytes of `view`, checked against the buffers' real lengths.
 fn view_bytes<'b>(buffers: &'b [Vec<u8>], view: &View) -> Result<&'b [u8], String> {
@@ -141,9 +148,9 @@ fn read_with<T: Copy + Default>(
             }
         }
         None => {
-            if count > MAX_ELEMENTS {
+            if count > MAX_ZERO_FILLED {
                 return Err(format!(
-                    "{what} claims {count} elements; at most {MAX_ELEMENTS} are supported"
+                    "{what} has no buffer view and claims {count} elements; at most {MAX_ZERO_FILLED} are supported without one"
                 ));
             }
             out = vec![T::default(); count * width];

@@ -189,6 +189,14 @@ impl Loader<'_> {
         let text = String::from_utf8(bytes)
             .map_err(|e| LoadError::file(path, format!("the file is not UTF-8 text: {e}")))?;
         let file: Rc<Path> = Rc::from(path);
+        if let Some(at) = too_deep(&text) {
+            let (line, column) = line_column(&text, at);
+            return Err(LoadError {
+                file: path.to_path_buf(),
+                position: Some((line, column)),
+                message: format!("elements are nested more than {MAX_NESTING} deep"),
+            });
+        }
         let doc = roxmltree::Document::parse(&text).map_err(|e| xml_error(path, &e))?;
         let root = doc.root_element();
         let src = Src {
@@ -427,6 +435,63 @@ fn check_version(v: &Attr) -> Result<(), LoadError> {
     Ok(())
 }
 
+/// The offset of the first start tag nested deeper than [`MAX_NESTING`], found by a scan of the
+/// tags alone (comments, CDATA, processing instructions and quoted values skipped). roxmltree's
+/// parser recurses once per level, so a file nested many thousands deep would overflow the stack
+/// before any other check could run. On malformed text the count may be off; the parser then
+/// reports the fault.
+fn too_deep(text: &str) -> Option<usize> {
+    let b = text.as_bytes();
+    let find = |from: usize, end: &[u8]| -> usize {
+        b.get(from..)
+            .and_then(|rest| rest.windows(end.len()).position(|w| w == end))
+            .map_or(b.len(), |i| from + i + end.len())
+    };
+    let mut depth = 0usize;
+    let mut i = 0;
+    while let Some(lt) = b
+        .get(i..)
+        .and_then(|rest| rest.iter().position(|&c| c == b'<'))
+    {
+        let start = i + lt;
+        let rest = &b[start..];
+        i = if rest.starts_with(b"<!--") {
+            find(start + 4, b"-->")
+        } else if rest.starts_with(b"<![CDATA[") {
+            find(start + 9, b"]]>")
+        } else if rest.starts_with(b"<?") {
+            find(start + 2, b"?>")
+        } else if rest.starts_with(b"</") {
+            depth = depth.saturating_sub(1);
+            start + 2
+        } else if rest.starts_with(b"<!") {
+            start + 2
+        } else {
+            // A start tag, to its `>` over quoted values; `/>` closes it at once.
+            let mut j = start + 1;
+            let mut quote = None;
+            while let Some(&c) = b.get(j) {
+                match quote {
+                    Some(q) if c == q => quote = None,
+                    Some(_) => {}
+                    None if c == b'"' || c == b'\'' => quote = Some(c),
+                    None if c == b'>' => break,
+                    None => {}
+                }
+                j += 1;
+            }
+            if b.get(j.wrapping_sub(1)) != Some(&b'/') {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Some(start);
+                }
+            }
+            j + 1
+        };
+    }
+    None
+}
+
 /// A roxmltree error at its own position, without the position repeated in the message.
 fn xml_error(path: &Path, e: &roxmltree::Error) -> LoadError {
     let pos = e.pos();
@@ -534,6 +599,19 @@ mod tests {
         assert_eq!((f.loc.line, f.loc.column), (2, 5));
         let v = f.attr("value").unwrap();
         assert_eq!((v.loc.line, v.loc.column), (2, 29));
+    }
+
+    #[test]
+    fn nesting_is_counted_over_tags_alone() {
+        let nested = |n: usize| "<a>".repeat(n) + &"</a>".repeat(n);
+        assert_eq!(too_deep(&nested(MAX_NESTING)), None);
+        assert_eq!(too_deep(&nested(MAX_NESTING + 1)), Some(3 * MAX_NESTING));
+        // Self-closing tags, comments, CDATA, instructions and quoted `>`s add no depth.
+        let flat =
+            "<?xml version=\"1.0\"?><a><b/><c x=\"/>\" y='>'/><!-- <d> --><![CDATA[<e>]]></a>";
+        let many = flat.repeat(MAX_NESTING + 5);
+        assert_eq!(too_deep(&many), None);
+        assert!(too_deep("<a x=\"unclosed").is_none());
     }
 
     #[test]
