@@ -1,8 +1,10 @@
 //! A render job: the scene, the command line's overrides, and the fingerprint that tells
 //! whether two renders (shards, a checkpoint and its resumption) draw the same image.
 
-use crate::cli::{IntegratorArg, Overrides, TriangleTestArg};
+use crate::cli::{AaArg, IntegratorArg, Overrides, TriangleTestArg};
 use anyhow::{anyhow, bail};
+use lucent::render::Sampling;
+use lucent::schedule::adaptive::Adaptive;
 use lucent_scene::desc::IntegratorName;
 use lucent_scene::desc::settings::TriangleTestName;
 use lucent_scene::hash::Fingerprint;
@@ -30,7 +32,12 @@ impl Job {
             None => SceneFile::default_scene(),
         };
         apply(&mut file, overrides);
-        let loaded = file.build()?;
+        let mut loaded = file.build()?;
+        loaded.settings.sampling = sampling(overrides)?;
+        if let Sampling::Adaptive(_) = loaded.settings.sampling {
+            // An adaptive pixel is one film sample, whatever the scene asks for.
+            loaded.settings.spp = 1;
+        }
         for w in &loaded.warnings {
             eprintln!("warning: {w}");
         }
@@ -49,7 +56,7 @@ impl Job {
         let s = &self.loaded.settings;
         let c = &self.loaded.scene.camera;
         let settings = format!(
-            "lucent {} {}x{} spp={} seed={} tile={} {:?} {}",
+            "lucent {} {}x{} spp={} seed={} tile={} {:?} {:?} {}",
             env!("CARGO_PKG_VERSION"),
             c.width(),
             c.height(),
@@ -57,6 +64,7 @@ impl Job {
             s.seed,
             s.tile_size,
             s.integrator,
+            s.sampling,
             self.loaded.scene.triangle_test().name()
         );
         let mut f = Fingerprint::default();
@@ -117,6 +125,23 @@ fn from_flag<T>(v: T) -> Spanned<T> {
     Spanned::new(0..0, v)
 }
 
+/// The sampling the flags ask for; the adaptive settings need `--aa adaptive`.
+fn sampling(o: &Overrides) -> anyhow::Result<Sampling> {
+    Ok(match o.aa {
+        Some(AaArg::Adaptive) => {
+            let d = Adaptive::default();
+            Sampling::Adaptive(Adaptive {
+                threshold: o.aa_threshold.unwrap_or(d.threshold),
+                depth: o.aa_depth.unwrap_or(d.depth),
+            })
+        }
+        _ if o.aa_threshold.is_some() || o.aa_depth.is_some() => {
+            bail!("--aa-threshold and --aa-depth need --aa adaptive")
+        }
+        _ => Sampling::Uniform,
+    })
+}
+
 fn apply(file: &mut SceneFile, o: &Overrides) {
     let d = &mut file.desc;
     if let Some(w) = o.width {
@@ -175,6 +200,13 @@ impl Overrides {
             self.triangle_test.map(|v| format!("{v:?}").to_lowercase()),
         );
         put("sandbox", self.sandbox.then(|| "true".to_string()));
+        put("aa", self.aa.map(|v| format!("{v:?}").to_lowercase()));
+        // Bit patterns: the threshold comes back exactly.
+        put(
+            "aa_threshold",
+            self.aa_threshold.map(|v| v.to_bits().to_string()),
+        );
+        put("aa_depth", self.aa_depth.map(|v| v.to_string()));
         pairs.join(";")
     }
 
@@ -208,6 +240,17 @@ impl Overrides {
                     })
                 }
                 "sandbox" => o.sandbox = v == "true",
+                "aa" => {
+                    o.aa = Some(match v {
+                        "uniform" => AaArg::Uniform,
+                        "adaptive" => AaArg::Adaptive,
+                        _ => return Err(bad()),
+                    })
+                }
+                "aa_threshold" => {
+                    o.aa_threshold = Some(f32::from_bits(v.parse().map_err(|_| bad())?))
+                }
+                "aa_depth" => o.aa_depth = Some(v.parse().map_err(|_| bad())?),
                 _ => bail!("an unknown setting `{k}`"),
             }
         }
@@ -231,6 +274,9 @@ mod tests {
             accel: Some(lucent::accel::AccelKind::Octree),
             triangle_test: Some(TriangleTestArg::Projection),
             sandbox: true,
+            aa: Some(AaArg::Adaptive),
+            aa_threshold: Some(0.1),
+            aa_depth: Some(4),
         };
         assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
         assert_eq!(Overrides::from_pairs("").unwrap(), Overrides::default());

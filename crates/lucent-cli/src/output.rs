@@ -121,6 +121,36 @@ fn samples_text(film: &Film) -> String {
     }
 }
 
+/// Writes the corners each pixel of an adaptive render used as a grey PNG: black for the 4 of
+/// an unsplit pixel, white for a pixel split at every level down to `depth`.
+pub fn write_density_map(
+    density: &[u32],
+    width: u32,
+    height: u32,
+    depth: u32,
+    path: &Path,
+) -> anyhow::Result<()> {
+    let full = 4 + 5 * (4u64.pow(depth) - 1) / 3;
+    let span = (full - 4).max(1) as f64;
+    let grey: Vec<u8> = density
+        .iter()
+        .map(|&n| {
+            ((u64::from(n).saturating_sub(4)) as f64 / span * 255.0)
+                .round()
+                .min(255.0) as u8
+        })
+        .collect();
+    write_atomically(path, |out| {
+        let mut encoder = png::Encoder::new(&mut *out, width, height);
+        encoder.set_color(png::ColorType::Grayscale);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(&grey)?;
+        writer.finish()?;
+        Ok(())
+    })
+}
+
 /// Writes `film` to `path` as `format`, atomically.
 pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
     let (w, h) = (film.width(), film.height());

@@ -4,11 +4,11 @@
 use crate::cli::RenderArgs;
 use crate::film_file::{FilmMeta, read_film, write_film};
 use crate::job::Job;
-use crate::output::{ImageFormat, write_image};
+use crate::output::{ImageFormat, write_density_map, write_image};
 use anyhow::{Context, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lucent::film::Film;
-use lucent::render::{Checkpoints, Hooks, RenderStats, Shard, render};
+use lucent::render::{Checkpoints, Hooks, RenderStats, Sampling, Shard, render};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -37,6 +37,19 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         plan_new(args)?
     };
     let mut settings = plan.job.loaded.settings;
+    let adaptive = match settings.sampling {
+        Sampling::Adaptive(a) => Some(a),
+        Sampling::Uniform => None,
+    };
+    if let Some(map) = &args.density_map {
+        if adaptive.is_none() {
+            bail!("--density-map shows where adaptive sampling went: add --aa adaptive");
+        }
+        if ImageFormat::from_path(map)? != ImageFormat::Png {
+            bail!("{}: the density map is written as PNG", map.display());
+        }
+        crate::output::check_writable(map)?;
+    }
     settings.threads = usize::from(args.threads);
     settings.shard = plan.shard;
     let meta = FilmMeta {
@@ -125,16 +138,20 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             write_image(&rendered.film, &plan.output, plan.format)
         }
         .with_context(|| format!("cannot write {}", plan.output.display()))?;
-        println!(
-            "{}",
-            summary(
-                &plan.output,
-                w,
-                h,
-                &format!("{} spp", settings.spp),
-                &rendered.stats
-            )
-        );
+        let sampled = match adaptive {
+            Some(a) => format!(
+                "adaptive (threshold {}, depth {}): {:.2} corner rays per pixel",
+                a.threshold,
+                a.depth,
+                rendered.stats.rays.camera as f64 / (f64::from(w) * f64::from(h))
+            ),
+            None => format!("{} spp", settings.spp),
+        };
+        println!("{}", summary(&plan.output, w, h, &sampled, &rendered.stats));
+        if let (Some(map), Some(a)) = (&args.density_map, adaptive) {
+            write_density_map(&rendered.density, w, h, a.depth, map)
+                .with_context(|| format!("cannot write {}", map.display()))?;
+        }
         // A finished render needs its checkpoint no more (only ever ours: see `plan_new`).
         if plan.checkpoint.is_file() {
             let _ = std::fs::remove_file(&plan.checkpoint);

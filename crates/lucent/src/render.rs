@@ -17,6 +17,7 @@ use crate::film::Film;
 use crate::integrator::{Integrator, RayStats};
 use crate::sampling::pixel_offset;
 use crate::scene::Scene;
+use crate::schedule::adaptive::{Adaptive, Band, BandCorners};
 use crate::schedule::{Tile, tiles};
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -65,6 +66,19 @@ pub struct RenderSettings {
     pub tile_size: u32,
     /// The share of the work to do.
     pub shard: Shard,
+    /// How each pixel is sampled.
+    pub sampling: Sampling,
+}
+
+/// How a pixel's value is sampled.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Sampling {
+    /// `spp` samples per pixel, stratified and jittered.
+    #[default]
+    Uniform,
+    /// Whitted's adaptive corners ([`crate::schedule::adaptive`]); `spp` is ignored: each
+    /// pixel's value goes into the film as one sample.
+    Adaptive(Adaptive),
 }
 
 impl Default for RenderSettings {
@@ -76,6 +90,7 @@ impl Default for RenderSettings {
             threads: 0,
             tile_size: 16,
             shard: Shard::default(),
+            sampling: Sampling::default(),
         }
     }
 }
@@ -111,6 +126,9 @@ pub struct Rendered {
     pub complete: bool,
     /// Fewest and most samples over the pixels of this render's shard.
     pub samples_range: (u32, u32),
+    /// With adaptive sampling, the corners each pixel used (rows from the top; 0 for pixels
+    /// not rendered in this run); empty otherwise.
+    pub density: Vec<u32>,
 }
 
 /// Why a render could not run.
@@ -163,6 +181,15 @@ pub fn render(
     hooks: &Hooks,
 ) -> Result<Rendered, RenderError> {
     let begin = Instant::now();
+    let adaptive = match settings.sampling {
+        Sampling::Adaptive(a) => Some(a),
+        Sampling::Uniform => None,
+    };
+    // An adaptive pixel is one film sample.
+    let settings = &RenderSettings {
+        spp: if adaptive.is_some() { 1 } else { settings.spp },
+        ..*settings
+    };
     let (width, height) = (scene.camera.width(), scene.camera.height());
     let film = match start {
         Some(f) => {
@@ -212,38 +239,74 @@ pub fn render(
     let done = AtomicU64::new(0);
     let last_checkpoint = Mutex::new(Instant::now());
 
-    // Passes of at most PASS_SAMPLES samples per pixel keep each work item short, so that
-    // periodic checkpoints hold recent work even at very high sample counts. A pixel's samples
-    // are still taken in the order of their indices.
-    let passes = settings.spp.div_ceil(PASS_SAMPLES);
-    pool.install(|| {
-        for pass in 0..passes {
-            let upto = settings.spp.min((pass + 1) * PASS_SAMPLES);
-            work.par_iter().for_each(|tile| {
-                if hooks.cancel.load(Ordering::Relaxed) {
-                    return;
-                }
-                let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
-                let mut part = lock(&film).region(tile.x0, tile.y0, w, h);
-                let (tile_stats, samples) =
-                    render_tile(scene, settings, tile, upto, &mut part, hooks.cancel);
-                lock(&film).store_region(&part, tile.x0, tile.y0);
-                *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
-                (hooks.progress)(done.fetch_add(samples, Ordering::Relaxed) + samples, total);
-                if let Some(c) = &hooks.checkpoint {
-                    // One thread at a time, only when due, and not once stopping (the caller
-                    // writes the final one); the copy is taken under the film's lock and
-                    // written outside it.
-                    if let Ok(mut last) = last_checkpoint.try_lock()
-                        && last.elapsed() >= c.every
-                        && !hooks.cancel.load(Ordering::Relaxed)
-                    {
-                        let snapshot = lock(&film).clone();
-                        (c.write)(&snapshot);
-                        *last = Instant::now();
-                    }
-                }
-            });
+    let density = Mutex::new(if adaptive.is_some() {
+        vec![0u32; width as usize * height as usize]
+    } else {
+        Vec::new()
+    });
+    // Traces one tile with `trace` into its region of the film, then reports progress and
+    // writes a checkpoint when one is due.
+    let run = |tile: &Tile, trace: &dyn Fn(&Tile, &mut Film) -> (RayStats, u64)| {
+        if hooks.cancel.load(Ordering::Relaxed) {
+            return;
+        }
+        let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
+        let mut part = lock(&film).region(tile.x0, tile.y0, w, h);
+        let (tile_stats, samples) = trace(tile, &mut part);
+        lock(&film).store_region(&part, tile.x0, tile.y0);
+        *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
+        (hooks.progress)(done.fetch_add(samples, Ordering::Relaxed) + samples, total);
+        if let Some(c) = &hooks.checkpoint {
+            // One thread at a time, only when due, and not once stopping (the caller writes
+            // the final one); the copy is taken under the film's lock and written outside it.
+            if let Ok(mut last) = last_checkpoint.try_lock()
+                && last.elapsed() >= c.every
+                && !hooks.cancel.load(Ordering::Relaxed)
+            {
+                let snapshot = lock(&film).clone();
+                (c.write)(&snapshot);
+                *last = Instant::now();
+            }
+        }
+    };
+
+    pool.install(|| match adaptive {
+        Some(a) => {
+            // Bands of tiles that share a row, top to bottom; each hands the corners of the
+            // row it shares to the next.
+            let mut above: Option<Band> = None;
+            let mut start = 0;
+            while start < work.len() {
+                let (y0, y1) = (work[start].y0, work[start].y1);
+                let end = start + work[start..].iter().take_while(|t| t.y1 == y1).count();
+                let band = Band::new(width, y0, y1, a.depth, above.take());
+                let corners = BandCorners {
+                    scene,
+                    integrator: &settings.integrator,
+                    adaptive: a,
+                    band: &band,
+                };
+                work[start..end].par_iter().for_each(|tile| {
+                    run(tile, &|t, part| {
+                        render_tile_adaptive(&corners, t, part, &density, hooks.cancel)
+                    })
+                });
+                above = Some(band);
+                start = end;
+            }
+        }
+        None => {
+            // Passes of at most PASS_SAMPLES samples per pixel keep each work item short, so
+            // that periodic checkpoints hold recent work even at very high sample counts. A
+            // pixel's samples are still taken in the order of their indices.
+            for pass in 0..settings.spp.div_ceil(PASS_SAMPLES) {
+                let upto = settings.spp.min((pass + 1) * PASS_SAMPLES);
+                work.par_iter().for_each(|tile| {
+                    run(tile, &|t, part| {
+                        render_tile(scene, settings, t, upto, part, hooks.cancel)
+                    })
+                });
+            }
         }
     });
 
@@ -273,12 +336,48 @@ pub fn render(
         stats,
         complete,
         samples_range,
+        density: density.into_inner().unwrap_or_else(|e| e.into_inner()),
     })
 }
 
 /// The film, even if a thread panicked while holding it (its data is still whole pixels).
 fn lock(m: &Mutex<Film>) -> std::sync::MutexGuard<'_, Film> {
     m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Gives every pixel of `tile` not yet in `part` its adaptive value, and records the corners
+/// each used in `density`; stops between pixels when cancelled.
+fn render_tile_adaptive(
+    corners: &BandCorners,
+    tile: &Tile,
+    part: &mut Film,
+    density: &Mutex<Vec<u32>>,
+    cancel: &AtomicBool,
+) -> (RayStats, u64) {
+    let mut stats = RayStats::default();
+    let mut taken = 0;
+    let mut used = Vec::with_capacity(tile.pixel_count() as usize);
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            let (px, py) = (x - tile.x0, y - tile.y0);
+            if part.samples(px, py) > 0 {
+                continue;
+            }
+            if cancel.load(Ordering::Relaxed) {
+                break;
+            }
+            let (value, n) = corners.pixel(x, y, &mut stats);
+            part.add_sample(px, py, Some(value), 1.0);
+            used.push((x, y, n));
+            taken += 1;
+        }
+    }
+    let width = corners.scene.camera.width() as usize;
+    let mut density = density.lock().unwrap_or_else(|e| e.into_inner());
+    for (x, y, n) in used {
+        density[y as usize * width + x as usize] = n;
+    }
+    (stats, taken)
 }
 
 /// Adds the samples of every pixel of `tile` below index `upto` to `part` (the tile's region of

@@ -2,17 +2,21 @@
 
 /// The sRGB transfer function (IEC 61966-2-1) of a linear value clamped to `[0, 1]`, as 8 bits.
 pub fn srgb8(linear: f32) -> u8 {
+    (linear_to_srgb(linear) * 255.0 + 0.5) as u8
+}
+
+/// The sRGB transfer function of a linear value clamped to `[0, 1]` (NaN as 0), in `[0, 1]`.
+pub fn linear_to_srgb(linear: f32) -> f32 {
     let v = if linear.is_nan() {
         0.0
     } else {
         linear.clamp(0.0, 1.0)
     };
-    let encoded = if v <= 0.003_130_8 {
+    if v <= 0.003_130_8 {
         12.92 * v
     } else {
         1.055 * v.powf(1.0 / 2.4) - 0.055
-    };
-    (encoded * 255.0 + 0.5) as u8
+    }
 }
 
 /// The inverse of [`srgb8`]'s transfer function, for reading 8-bit sRGB back as linear.

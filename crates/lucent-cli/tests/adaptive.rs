@@ -1,0 +1,85 @@
+//! `--aa adaptive` through the command line: the density map, the flags' checks, and shards
+//! that merge into the very image of a whole render.
+
+mod common;
+
+use common::{assert_success, lucent, read_pfm};
+use std::path::Path;
+
+fn run(dir: &Path, args: &[&str]) -> std::process::Output {
+    lucent().current_dir(dir).args(args).output().unwrap()
+}
+
+const SMALL: [&str; 4] = ["--width", "40", "--height", "30"];
+
+#[test]
+fn the_density_map_shows_where_the_corners_went() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let grey = |threshold: &str| {
+        let mut args = vec!["render", "-o", "a.pfm", "--aa", "adaptive"];
+        args.extend(SMALL);
+        args.extend(["--aa-threshold", threshold, "--density-map", "map.png"]);
+        let output = run(d, &args);
+        assert_success(&output);
+        let stdout = String::from_utf8_lossy(&output.stdout).to_string();
+        assert!(stdout.contains("corner rays per pixel"), "{stdout}");
+        let map = image::open(d.join("map.png")).unwrap().to_luma8();
+        assert_eq!(map.dimensions(), (40, 30));
+        map.into_raw()
+    };
+    // Threshold 0 splits every pixel to the depth limit: all white; infinity none: all black.
+    assert!(grey("0").iter().all(|&v| v == 255));
+    assert!(grey("inf").iter().all(|&v| v == 0));
+    // In between, the edges of the default scene's spheres and checks are split, not the sky.
+    let map = grey("0.1");
+    let split = map.iter().filter(|&&v| v > 0).count();
+    assert!(split > 40 && split < map.len() / 2, "{split}");
+    assert_eq!(map[0], 0, "the sky's corner is not split");
+}
+
+#[test]
+fn adaptive_settings_need_adaptive_sampling() {
+    let dir = tempfile::tempdir().unwrap();
+    for args in [
+        &["render", "--aa-threshold", "0.1"][..],
+        &["render", "--aa-depth", "2"],
+        &["render", "--density-map", "m.png"],
+        &["render", "--aa", "adaptive", "--density-map", "m.exr"],
+        &["render", "--aa", "adaptive", "--aa-depth", "9"],
+        &["render", "--aa", "adaptive", "--aa-threshold", "-1"],
+    ] {
+        let output = run(dir.path(), args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{args:?}");
+        assert!(stderr.starts_with("error"), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(!dir.path().join("render.png").exists());
+    }
+}
+
+#[test]
+fn adaptive_shards_merge_into_the_whole_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let with = |extra: &[&str]| {
+        let mut args = vec!["render", "--aa", "adaptive", "--aa-depth", "2"];
+        args.extend(SMALL);
+        args.extend(extra);
+        assert_success(&run(d, &args));
+    };
+    with(&["-o", "whole.pfm"]);
+    with(&["--shard", "0/2", "-o", "p0.exr", "--threads", "1"]);
+    with(&["--shard", "1/2", "-o", "p1.exr"]);
+    assert_success(&run(d, &["merge", "p0.exr", "p1.exr", "-o", "merged.pfm"]));
+    assert_eq!(
+        read_pfm(&d.join("merged.pfm")),
+        read_pfm(&d.join("whole.pfm"))
+    );
+    // The sampling is part of what a shard must share with the others.
+    let mut uniform = vec!["render", "--shard", "1/2", "-o", "uniform.exr"];
+    uniform.extend(SMALL);
+    assert_success(&run(d, &uniform));
+    let output = run(d, &["merge", "p0.exr", "uniform.exr", "-o", "x.pfm"]);
+    assert!(!output.status.success());
+}

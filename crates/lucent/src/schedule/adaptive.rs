@@ -1,0 +1,272 @@
+//! Whitted's adaptive supersampling (1980): rays through the corners of each pixel; where the
+//! four corners differ, the pixel is split into four and the quarters are treated the same way,
+//! down to a depth limit.
+//!
+//! Corners lie on a lattice `2^depth` times finer than the pixels, named by integer coordinates
+//! `(i, j)`: the image-plane point `(i, j) / 2^depth`. A corner is shared by every pixel and
+//! sub-pixel that touches it and is traced exactly once (a [`OnceLock`] per corner: a thread
+//! that needs a corner another thread is tracing waits for it). A corner's colour depends only
+//! on its position, so the image is the same whoever traces it, on any number of threads.
+//!
+//! **Difference metric.** The four corners of a square differ when, in some channel, the
+//! largest and smallest of their display values (linear radiance clamped to [0, 1] and
+//! encoded with a gamma of 2 — close to sRGB, as the eye sees it, and cheap) are at least
+//! `threshold` apart. A square is then split
+//! unless it is at the depth limit. Threshold 0 therefore splits every square; an infinite
+//! threshold none. A square that is not split takes the mean of its four corners; a split one,
+//! the mean of its quarters.
+//!
+//! The image is traced in bands of tile rows, one after the other (the tiles of a band in
+//! parallel). A band keeps its pixel corners in a dense grid and the sub-pixel corners on pixel
+//! edges, which two pixels share, in a map; the corners inside a pixel live only while that
+//! pixel is worked on. A band hands the corners of the row it shares to the next one and is then
+//! dropped, so memory stays proportional to a band, not to the image.
+
+use crate::color::Rgb;
+use crate::integrator::{Integrator, RayStats};
+use crate::scene::Scene;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// The deepest subdivision allowed: 2^8 = 256 sub-pixels per pixel side.
+pub const MAX_DEPTH: u32 = 8;
+
+/// Settings of adaptive supersampling.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Adaptive {
+    /// Corners whose display values differ by at least this much get split (≥ 0).
+    pub threshold: f32,
+    /// How many times a pixel may be halved (0..=MAX_DEPTH).
+    pub depth: u32,
+}
+
+impl Default for Adaptive {
+    fn default() -> Self {
+        Self {
+            threshold: 0.05,
+            depth: 3,
+        }
+    }
+}
+
+const SHARDS: usize = 16;
+
+/// Corners by lattice position, each traced once.
+type CornerSlots = HashMap<(u32, u32), Arc<OnceLock<Rgb>>, FastHash>;
+
+/// Corners shared between threads, behind sharded locks.
+#[derive(Default)]
+struct SharedCorners {
+    shards: [Mutex<CornerSlots>; SHARDS],
+}
+
+impl SharedCorners {
+    /// The slot of corner `(i, j)`, made empty when it is new.
+    fn slot(&self, i: u32, j: u32) -> Arc<OnceLock<Rgb>> {
+        let shard = (i ^ j.rotate_left(7)) as usize % SHARDS;
+        let mut map = self.shards[shard].lock().unwrap_or_else(|e| e.into_inner());
+        map.entry((i, j)).or_default().clone()
+    }
+}
+
+/// A cheap hasher for lattice coordinates (a multiply and a rotate per word).
+#[derive(Clone, Copy, Default)]
+struct FastHash;
+
+impl std::hash::BuildHasher for FastHash {
+    type Hasher = FastHasher;
+    fn build_hasher(&self) -> FastHasher {
+        FastHasher(0)
+    }
+}
+
+struct FastHasher(u64);
+
+impl std::hash::Hasher for FastHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_u32(&mut self, v: u32) {
+        self.write_u64(u64::from(v));
+    }
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(29) ^ v).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
+/// The corners of one band of the image (pixel rows `y0..y1`): the pixel corners in a dense
+/// grid, the sub-pixel corners on pixel edges (shared by two pixels) in a shared map. Corners
+/// inside a pixel belong to it alone and are kept by [`BandCorners::pixel`] while it works.
+pub struct Band {
+    y0: u32,
+    columns: u32,
+    pixel_corners: Vec<OnceLock<Rgb>>,
+    edge_corners: SharedCorners,
+}
+
+impl Band {
+    /// The band of pixel rows `y0..y1` of an image `width` pixels wide. `above`, the band just
+    /// above (if any), hands over the row of pixel corners the two share.
+    pub fn new(width: u32, y0: u32, y1: u32, depth: u32, above: Option<Band>) -> Band {
+        let columns = width + 1;
+        let mut pixel_corners: Vec<OnceLock<Rgb>> = Vec::new();
+        pixel_corners.resize_with(columns as usize * (y1 - y0 + 1) as usize, OnceLock::new);
+        let mut edge_corners = SharedCorners::default();
+        if let Some(above) = above
+            && above.y0 + above.rows() == y0
+        {
+            let last = above.rows() as usize * columns as usize;
+            for (to, from) in pixel_corners
+                .iter_mut()
+                .zip(above.pixel_corners.into_iter().skip(last))
+            {
+                *to = from;
+            }
+            // Of the sub-pixel corners above, only those on the shared row are needed here.
+            let seam = y0 << depth;
+            for (to, from) in edge_corners
+                .shards
+                .iter_mut()
+                .zip(above.edge_corners.shards)
+            {
+                let mut from = from.into_inner().unwrap_or_else(|e| e.into_inner());
+                from.retain(|&(_, j), _| j == seam);
+                *to.get_mut().unwrap_or_else(|e| e.into_inner()) = from;
+            }
+        }
+        Band {
+            y0,
+            columns,
+            pixel_corners,
+            edge_corners,
+        }
+    }
+
+    fn rows(&self) -> u32 {
+        (self.pixel_corners.len() / self.columns as usize) as u32 - 1
+    }
+}
+
+/// What the pixels of one band need to find their corners.
+pub struct BandCorners<'a> {
+    /// The scene traced.
+    pub scene: &'a Scene,
+    /// How a corner's colour is computed.
+    pub integrator: &'a Integrator,
+    /// The settings.
+    pub adaptive: Adaptive,
+    /// The band's corners.
+    pub band: &'a Band,
+}
+
+/// Corners inside the pixel being worked on.
+type Inner = HashMap<(u32, u32), Rgb, FastHash>;
+
+impl BandCorners<'_> {
+    fn trace(&self, i: u32, j: u32, stats: &mut RayStats) -> Rgb {
+        let step = (1u32 << self.adaptive.depth) as f32;
+        let ray = self.scene.camera.ray(i as f32 / step, j as f32 / step);
+        stats.camera += 1;
+        let value = self.integrator.radiance(self.scene, &ray, stats);
+        if value.is_finite() {
+            value
+        } else {
+            stats.nonfinite += 1;
+            Rgb::BLACK
+        }
+    }
+
+    /// The colour at lattice corner `(i, j)`, traced if no one has yet.
+    fn corner(&self, i: u32, j: u32, inner: &mut Inner, stats: &mut RayStats) -> Rgb {
+        let d = self.adaptive.depth;
+        let mask = (1u32 << d) - 1;
+        let (on_column, on_row) = (i & mask == 0, j & mask == 0);
+        if on_column && on_row {
+            let (x, y) = (i >> d, (j >> d) - self.band.y0);
+            let slot = &self.band.pixel_corners[(y * self.band.columns + x) as usize];
+            *slot.get_or_init(|| self.trace(i, j, stats))
+        } else if on_column || on_row {
+            let slot = self.band.edge_corners.slot(i, j);
+            *slot.get_or_init(|| self.trace(i, j, stats))
+        } else {
+            *inner
+                .entry((i, j))
+                .or_insert_with(|| self.trace(i, j, stats))
+        }
+    }
+
+    /// The colour of pixel `(x, y)` and the number of corners it used.
+    pub fn pixel(&self, x: u32, y: u32, stats: &mut RayStats) -> (Rgb, u32) {
+        let size = 1u32 << self.adaptive.depth;
+        let mut inner = Inner::default();
+        let mut used = 4;
+        let value = self.square(x * size, y * size, size, &mut inner, stats, &mut used);
+        (value, used)
+    }
+
+    fn square(
+        &self,
+        i: u32,
+        j: u32,
+        size: u32,
+        inner: &mut Inner,
+        stats: &mut RayStats,
+        used: &mut u32,
+    ) -> Rgb {
+        let c = [
+            self.corner(i, j, inner, stats),
+            self.corner(i + size, j, inner, stats),
+            self.corner(i, j + size, inner, stats),
+            self.corner(i + size, j + size, inner, stats),
+        ];
+        if size == 1 || spread(&c) < self.adaptive.threshold {
+            return (c[0] + c[1] + c[2] + c[3]) * 0.25;
+        }
+        // A split makes 5 new corners: the edge midpoints and the centre.
+        *used += 5;
+        let h = size / 2;
+        let quarters = [(i, j), (i + h, j), (i, j + h), (i + h, j + h)]
+            .map(|(qi, qj)| self.square(qi, qj, h, inner, stats, used));
+        (quarters[0] + quarters[1] + quarters[2] + quarters[3]) * 0.25
+    }
+}
+
+/// The largest difference, over the channels, between the display values of the corners:
+/// linear values clamped to [0, 1] and encoded with a gamma of 2 (close to sRGB, and cheap).
+pub fn spread(corners: &[Rgb; 4]) -> f32 {
+    let mut hi = [f32::MIN; 3];
+    let mut lo = [f32::MAX; 3];
+    for c in corners {
+        for (k, v) in c.to_array().into_iter().enumerate() {
+            let v = if v > 0.0 { v.min(1.0).sqrt() } else { 0.0 };
+            hi[k] = hi[k].max(v);
+            lo[k] = lo[k].min(v);
+        }
+    }
+    (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f32::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spread_is_the_largest_display_difference() {
+        let grey = Rgb::new(0.25, 0.25, 0.25);
+        assert_eq!(spread(&[grey; 4]), 0.0);
+        let white = Rgb::new(1.0, 1.0, 1.0);
+        // Values above 1 look white; NaN and negatives black.
+        let s = spread(&[grey, grey, grey, Rgb::new(0.25, 2.0, 0.25)]);
+        assert_eq!(s, spread(&[grey, grey, grey, Rgb::new(0.25, 1.0, 0.25)]));
+        assert_eq!(s, 0.5);
+        assert_eq!(
+            spread(&[Rgb::new(f32::NAN, -1.0, 0.0), white, white, white]),
+            1.0
+        );
+    }
+}

@@ -1,0 +1,141 @@
+//! Whitted's adaptive supersampling: every corner traced once, the depth limit, the two
+//! extreme thresholds, and the same image on any number of threads or tile size.
+
+use glam::Vec3;
+use lucent::Rgb;
+use lucent::camera::Camera;
+use lucent::integrator::Integrator;
+use lucent::material::Material;
+use lucent::render::{Hooks, RenderSettings, Rendered, Sampling, render};
+use lucent::scene::{Scene, SceneBuilder};
+use lucent::schedule::adaptive::Adaptive;
+use lucent::shape::Sphere;
+use std::sync::atomic::AtomicBool;
+
+const W: u32 = 23;
+const H: u32 = 17;
+
+/// A white sphere on black, seen flat by the raycast integrator: a hard edge, a smooth inside.
+fn scene() -> Scene {
+    let camera = Camera::new(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, 30.0, W, H).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    let m = b.material(Material::diffuse(Rgb::WHITE));
+    b.sphere(
+        Sphere {
+            center: Vec3::new(0.3, -0.2, 0.0),
+            radius: 1.6,
+        },
+        m,
+    );
+    b.build().unwrap()
+}
+
+fn adaptive(scene: &Scene, threshold: f32, depth: u32, threads: usize, tile: u32) -> Rendered {
+    let settings = RenderSettings {
+        integrator: Integrator::Raycast,
+        threads,
+        tile_size: tile,
+        sampling: Sampling::Adaptive(Adaptive { threshold, depth }),
+        ..RenderSettings::default()
+    };
+    let cancel = AtomicBool::new(false);
+    let hooks = Hooks {
+        cancel: &cancel,
+        progress: &|_, _| {},
+        checkpoint: None,
+    };
+    render(scene, &settings, None, &hooks).unwrap()
+}
+
+/// Corners a pixel uses when split at every level down to `depth`.
+fn full(depth: u32) -> u32 {
+    4 + 5 * (4u32.pow(depth) - 1) / 3
+}
+
+#[test]
+fn threshold_zero_splits_everywhere_and_traces_each_corner_once() {
+    let scene = scene();
+    for depth in [0, 1, 3] {
+        let r = adaptive(&scene, 0.0, depth, 2, 4);
+        let step = 1u64 << depth;
+        // Every lattice point of the image, once: shared corners are not traced twice.
+        let lattice = (u64::from(W) * step + 1) * (u64::from(H) * step + 1);
+        assert_eq!(r.stats.rays.camera, lattice, "depth {depth}");
+        assert!(r.density.iter().all(|&n| n == full(depth)), "depth {depth}");
+        assert!(r.complete);
+    }
+}
+
+#[test]
+fn an_infinite_threshold_takes_one_set_of_corners_per_pixel() {
+    let r = adaptive(&scene(), f32::INFINITY, 3, 2, 5);
+    assert_eq!(r.stats.rays.camera, u64::from((W + 1) * (H + 1)));
+    assert!(r.density.iter().all(|&n| n == 4));
+}
+
+#[test]
+fn only_edges_are_split_down_to_the_depth_limit() {
+    let scene = scene();
+    let r = adaptive(&scene, 0.1, 2, 2, 8);
+    let (mut flat, mut split) = (0, 0);
+    for y in 0..H {
+        for x in 0..W {
+            let n = r.density[(y * W + x) as usize];
+            assert!((4..=full(2)).contains(&n), "{n}");
+            let v = r.film.pixel(x, y).r;
+            if v == 0.0 || v == 1.0 {
+                flat += u32::from(n == 4);
+            } else {
+                // A pixel that straddles the silhouette was split.
+                split += 1;
+                assert!(n > 4, "({x}, {y}) {v} {n}");
+            }
+        }
+    }
+    assert!(flat > W * H / 2 && split > 10, "{flat} {split}");
+    // Every ray traced was needed by some pixel, and no more than the full lattice.
+    let lattice = u64::from((4 * W + 1) * (4 * H + 1));
+    assert!(r.stats.rays.camera < lattice / 3);
+}
+
+#[test]
+fn the_image_is_the_same_on_any_threads_and_tiles() {
+    let scene = scene();
+    let a = adaptive(&scene, 0.05, 3, 1, 16);
+    let b = adaptive(&scene, 0.05, 3, 2, 3);
+    assert_eq!(a.film, b.film);
+    assert_eq!(a.density, b.density);
+    assert_eq!(a.stats.rays.camera, b.stats.rays.camera);
+}
+
+#[test]
+fn edge_pixels_approach_the_covered_area() {
+    // The deeper the subdivision, the closer an edge pixel's value comes to the share of it
+    // that the sphere covers, estimated here by a dense uniform grid.
+    let scene = scene();
+    let coarse = adaptive(&scene, 0.0, 1, 2, 8);
+    let fine = adaptive(&scene, 0.0, 5, 2, 8);
+    let mut err = [0.0f64; 2];
+    for y in 0..H {
+        for x in 0..W {
+            let mut covered = 0;
+            let n = 64;
+            for j in 0..n {
+                for i in 0..n {
+                    let ray = scene.camera.ray(
+                        x as f32 + (i as f32 + 0.5) / n as f32,
+                        y as f32 + (j as f32 + 0.5) / n as f32,
+                    );
+                    let mut stats = Default::default();
+                    covered +=
+                        u32::from(Integrator::Raycast.radiance(&scene, &ray, &mut stats).r > 0.5);
+                }
+            }
+            let truth = f64::from(covered) / f64::from(n * n);
+            for (e, r) in err.iter_mut().zip([&coarse, &fine]) {
+                *e += (f64::from(r.film.pixel(x, y).r) - truth).abs();
+            }
+        }
+    }
+    assert!(err[1] < err[0] / 4.0, "{err:?}");
+}
