@@ -257,7 +257,14 @@ pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<ObjFile, LoadError> {
                 let p = numbers::<3>(&mut words, "vertex", line, path)?;
                 obj.positions.push(Vec3::from_array(p));
                 // After x y z: nothing, a weight `w` (ignored), or a colour `r g b`.
-                let rest: Vec<&str> = words.collect();
+                // Up to four more words, without allocating (a fourth is an error below).
+                let mut rest = [""; 4];
+                let mut count = 0;
+                for w in words.by_ref().take(4) {
+                    rest[count] = w;
+                    count += 1;
+                }
+                let rest = &rest[..count];
                 match rest.len() {
                     0 | 1 => {
                         if let Some(w) = rest.first() {
@@ -269,7 +276,7 @@ pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<ObjFile, LoadError> {
                     }
                     3 => {
                         let [r, g, b] =
-                            numbers::<3>(&mut rest.into_iter(), "vertex colour", line, path)?;
+                            numbers::<3>(&mut rest.iter().copied(), "vertex colour", line, path)?;
                         // Colours start with the first vertex that has one; earlier ones are white.
                         obj.colors.resize(obj.positions.len() - 1, Rgb::WHITE);
                         obj.colors.push(Rgb::new(r, g, b));
@@ -441,9 +448,22 @@ mod tests {
         );
         assert_eq!(obj.mesh(Some("")).unwrap().positions.len(), 3);
         assert!(obj.mesh(Some("green")).is_none());
+        // A material named by `usemtl` but given no faces is no part either.
+        let unused = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl late\n").unwrap();
+        assert!(unused.mesh(Some("late")).is_none());
         // Without normals on every corner, none are kept.
         let mixed = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3\n").unwrap();
         assert!(mixed.mesh(None).unwrap().normals.is_empty());
+    }
+
+    #[test]
+    fn a_vertex_weight_is_read_past() {
+        let obj = parse("v 0 0 0 1\nv 1 0 0 0.5\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert_eq!(obj.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
+        assert!(obj.colors.is_empty());
+        let e = parse("v 0 0 0 1 1\n").unwrap_err();
+        assert!(e.message.contains("expected 3, 4 (x y z w) or 6"), "{e}");
+        assert!(parse("v 0 0 0 x\n").is_err());
     }
 
     #[test]
