@@ -90,7 +90,7 @@ pub struct Overrides {
     #[arg(long, value_enum)]
     pub aa: Option<AaArg>,
     /// Adaptive: split a pixel (or sub-pixel) whose corners' display values differ by at least
-    /// this much in a channel, 0 to 1 (0 splits everything). Default 0.05.
+    /// this much in a channel, 0 to 1 (0 splits everything). Default 0.1.
     #[arg(long, value_parser = threshold)]
     pub aa_threshold: Option<f32>,
     /// Adaptive: how many times a pixel may be halved, 0 to 8. Default 3.

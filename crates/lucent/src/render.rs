@@ -279,7 +279,7 @@ pub fn render(
             while start < work.len() {
                 let (y0, y1) = (work[start].y0, work[start].y1);
                 let end = start + work[start..].iter().take_while(|t| t.y1 == y1).count();
-                let band = Band::new(width, y0, y1, a.depth, above.take());
+                let band = Band::new((width, height), (y0, y1), a.depth, above.take());
                 let corners = BandCorners {
                     scene,
                     integrator: &settings.integrator,

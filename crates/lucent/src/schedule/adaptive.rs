@@ -12,8 +12,12 @@
 //! largest and smallest of their display values (linear radiance clamped to [0, 1] and
 //! encoded with a gamma of 2 — close to sRGB, as the eye sees it, and cheap) are at least
 //! `threshold` apart. A square is then split
-//! unless it is at the depth limit. Threshold 0 therefore splits every square; an infinite
-//! threshold none. A square that is not split takes the mean of its four corners; a split one,
+//! unless it is at the depth limit. A pixel is also split when one of its four neighbours
+//! (left, right, above, below) has corners that differ: a regular lattice aliases patterns
+//! finer than a pixel (a checkerboard near the horizon), and a pixel whose corners agree by
+//! chance in such a busy region would otherwise keep a wrong colour. This widening of
+//! Whitted's test costs no rays at the pixel level, since every pixel's corners are traced
+//! anyway. Threshold 0 therefore splits every square; an infinite threshold none. A square that is not split takes the mean of its four corners; a split one,
 //! the mean of its quarters.
 //!
 //! The image is traced in bands of tile rows, one after the other (the tiles of a band in
@@ -43,7 +47,7 @@ pub struct Adaptive {
 impl Default for Adaptive {
     fn default() -> Self {
         Self {
-            threshold: 0.05,
+            threshold: 0.1,
             depth: 3,
         }
     }
@@ -100,32 +104,42 @@ impl std::hash::Hasher for FastHasher {
 }
 
 /// The corners of one band of the image (pixel rows `y0..y1`): the pixel corners in a dense
-/// grid, the sub-pixel corners on pixel edges (shared by two pixels) in a shared map. Corners
-/// inside a pixel belong to it alone and are kept by [`BandCorners::pixel`] while it works.
+/// grid (rows `y0 − 1` to `y1 + 1`, for the neighbour test), the sub-pixel corners on pixel
+/// edges (shared by two pixels) in a shared map. Corners inside a pixel belong to it alone and
+/// are kept by [`BandCorners::pixel`] while it works.
 pub struct Band {
-    y0: u32,
+    /// First and last row of pixel corners in the grid.
+    first: u32,
+    last: u32,
     columns: u32,
     pixel_corners: Vec<OnceLock<Rgb>>,
     edge_corners: SharedCorners,
 }
 
 impl Band {
-    /// The band of pixel rows `y0..y1` of an image `width` pixels wide. `above`, the band just
-    /// above (if any), hands over the row of pixel corners the two share.
-    pub fn new(width: u32, y0: u32, y1: u32, depth: u32, above: Option<Band>) -> Band {
+    /// The band of pixel rows `y0..y1` of a `width × height` image. `above`, the band just
+    /// above (if any), hands over the corners the two share.
+    pub fn new(
+        (width, height): (u32, u32),
+        (y0, y1): (u32, u32),
+        depth: u32,
+        above: Option<Band>,
+    ) -> Band {
         let columns = width + 1;
+        let (first, last) = (y0.saturating_sub(1), (y1 + 1).min(height));
         let mut pixel_corners: Vec<OnceLock<Rgb>> = Vec::new();
-        pixel_corners.resize_with(columns as usize * (y1 - y0 + 1) as usize, OnceLock::new);
+        pixel_corners.resize_with(
+            columns as usize * (last - first + 1) as usize,
+            OnceLock::new,
+        );
         let mut edge_corners = SharedCorners::default();
-        if let Some(above) = above
-            && above.y0 + above.rows() == y0
-        {
-            let last = above.rows() as usize * columns as usize;
-            for (to, from) in pixel_corners
-                .iter_mut()
-                .zip(above.pixel_corners.into_iter().skip(last))
-            {
-                *to = from;
+        if let Some(above) = above {
+            let c = columns as usize;
+            for (k, from) in above.pixel_corners.into_iter().enumerate() {
+                let row = above.first + (k / c) as u32;
+                if (first..=last).contains(&row) {
+                    pixel_corners[(row - first) as usize * c + k % c] = from;
+                }
             }
             // Of the sub-pixel corners above, only those on the shared row are needed here.
             let seam = y0 << depth;
@@ -140,15 +154,12 @@ impl Band {
             }
         }
         Band {
-            y0,
+            first,
+            last,
             columns,
             pixel_corners,
             edge_corners,
         }
-    }
-
-    fn rows(&self) -> u32 {
-        (self.pixel_corners.len() / self.columns as usize) as u32 - 1
     }
 }
 
@@ -187,7 +198,7 @@ impl BandCorners<'_> {
         let mask = (1u32 << d) - 1;
         let (on_column, on_row) = (i & mask == 0, j & mask == 0);
         if on_column && on_row {
-            let (x, y) = (i >> d, (j >> d) - self.band.y0);
+            let (x, y) = (i >> d, (j >> d) - self.band.first);
             let slot = &self.band.pixel_corners[(y * self.band.columns + x) as usize];
             *slot.get_or_init(|| self.trace(i, j, stats))
         } else if on_column || on_row {
@@ -205,15 +216,40 @@ impl BandCorners<'_> {
         let size = 1u32 << self.adaptive.depth;
         let mut inner = Inner::default();
         let mut used = 4;
-        let value = self.square(x * size, y * size, size, &mut inner, stats, &mut used);
+        let busy = self.busy_neighbour(x, y, &mut inner, stats);
+        let value = self.square(x * size, y * size, size, busy, &mut inner, stats, &mut used);
         (value, used)
     }
 
+    /// True when a pixel beside `(x, y)` (left, right, above or below) has corners that differ:
+    /// the pixel lies in a busy region even if its own corners agree by chance.
+    fn busy_neighbour(&self, x: u32, y: u32, inner: &mut Inner, stats: &mut RayStats) -> bool {
+        let size = 1u32 << self.adaptive.depth;
+        let (w, h) = (self.band.columns - 1, self.band.last.max(y + 1));
+        let (x, y) = (x as i64, y as i64);
+        [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)]
+            .into_iter()
+            .filter(|&(nx, ny)| nx >= 0 && ny >= 0 && nx < i64::from(w) && ny < i64::from(h))
+            .filter(|&(_, ny)| ny as u32 >= self.band.first && ny as u32 + 1 <= self.band.last)
+            .any(|(nx, ny)| {
+                let (i, j) = (nx as u32 * size, ny as u32 * size);
+                let c = [
+                    self.corner(i, j, inner, stats),
+                    self.corner(i + size, j, inner, stats),
+                    self.corner(i, j + size, inner, stats),
+                    self.corner(i + size, j + size, inner, stats),
+                ];
+                spread(&c) >= self.adaptive.threshold
+            })
+    }
+
+    #[allow(clippy::too_many_arguments)]
     fn square(
         &self,
         i: u32,
         j: u32,
         size: u32,
+        busy: bool,
         inner: &mut Inner,
         stats: &mut RayStats,
         used: &mut u32,
@@ -224,14 +260,14 @@ impl BandCorners<'_> {
             self.corner(i, j + size, inner, stats),
             self.corner(i + size, j + size, inner, stats),
         ];
-        if size == 1 || spread(&c) < self.adaptive.threshold {
+        if size == 1 || (!busy && spread(&c) < self.adaptive.threshold) {
             return (c[0] + c[1] + c[2] + c[3]) * 0.25;
         }
         // A split makes 5 new corners: the edge midpoints and the centre.
         *used += 5;
         let h = size / 2;
         let quarters = [(i, j), (i + h, j), (i, j + h), (i + h, j + h)]
-            .map(|(qi, qj)| self.square(qi, qj, h, inner, stats, used));
+            .map(|(qi, qj)| self.square(qi, qj, h, false, inner, stats, used));
         (quarters[0] + quarters[1] + quarters[2] + quarters[3]) * 0.25
     }
 }
