@@ -225,12 +225,13 @@ impl BandCorners<'_> {
     /// the pixel lies in a busy region even if its own corners agree by chance.
     fn busy_neighbour(&self, x: u32, y: u32, inner: &mut Inner, stats: &mut RayStats) -> bool {
         let size = 1u32 << self.adaptive.depth;
-        let (w, h) = (self.band.columns - 1, self.band.last.max(y + 1));
-        let (x, y) = (x as i64, y as i64);
+        let w = i64::from(self.band.columns - 1);
+        let (x, y) = (i64::from(x), i64::from(y));
+        // A neighbour's corner rows ny and ny + 1 must both be in the band's grid.
+        let rows = i64::from(self.band.first)..i64::from(self.band.last);
         [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)]
             .into_iter()
-            .filter(|&(nx, ny)| nx >= 0 && ny >= 0 && nx < i64::from(w) && ny < i64::from(h))
-            .filter(|&(_, ny)| ny as u32 >= self.band.first && ny as u32 + 1 <= self.band.last)
+            .filter(|&(nx, ny)| (0..w).contains(&nx) && rows.contains(&ny))
             .any(|(nx, ny)| {
                 let (i, j) = (nx as u32 * size, ny as u32 * size);
                 let c = [
