@@ -199,6 +199,21 @@ pub struct BenchArgs {
     /// Also write the results as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Instead of the accelerators: adaptive against uniform supersampling at equal image
+    /// error, on the first scene given (default: the built-in one), on the most threads given.
+    #[arg(long)]
+    pub sampling: bool,
+    /// Image size of `--sampling`, as WIDTHxHEIGHT.
+    #[arg(long, default_value = "800x600", value_parser = size)]
+    pub size: (u32, u32),
+}
+
+/// `WIDTHxHEIGHT`, each 1 to 65536.
+fn size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("expected WIDTHxHEIGHT such as 800x600, got `{s}`");
+    let (w, h) = s.split_once('x').ok_or_else(bad)?;
+    let side = |v: &str| v.parse::<u32>().ok().filter(|v| (1..=65536).contains(v));
+    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
 }
 
 /// A positive, finite number of seconds (at most a year).

@@ -11,6 +11,7 @@
 mod peers;
 mod rays;
 mod report;
+mod sampling;
 
 use crate::cli::BenchArgs;
 use anyhow::{Context, bail};
@@ -29,6 +30,14 @@ const CAMERA_SIDE: u32 = 1024;
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
+    if args.sampling {
+        let threads = args.threads.iter().copied().max().map_or(0, usize::from);
+        return sampling::run(
+            args.scenes.first().map(PathBuf::as_path),
+            args.size,
+            threads,
+        );
+    }
     let scenes = if args.scenes.is_empty() {
         default_scenes()?
     } else {
