@@ -44,6 +44,9 @@ pub enum AaArg {
     Uniform,
     /// Whitted's adaptive supersampling: rays at pixel corners, split where they differ.
     Adaptive,
+    /// A quadtree over the screen: one corner per block of pixels, blocks split where their
+    /// corners differ, down to pixels and below as `adaptive` does.
+    Quadtree,
 }
 
 /// Ray–triangle tests selectable on the command line.
@@ -86,7 +89,8 @@ pub struct Overrides {
     /// from untrusted sources.
     #[arg(long)]
     pub sandbox: bool,
-    /// Anti-aliasing: `uniform` (--spp samples per pixel) or `adaptive` (Whitted's corners).
+    /// Anti-aliasing: `uniform` (--spp samples per pixel), `adaptive` (Whitted's corners) or
+    /// `quadtree` (corners of blocks of pixels first).
     #[arg(long, value_enum)]
     pub aa: Option<AaArg>,
     /// Adaptive: split a pixel (or sub-pixel) whose corners' display values differ by at least
@@ -96,6 +100,9 @@ pub struct Overrides {
     /// Adaptive: how many times a pixel may be halved, 0 to 8. Default 3.
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=8))]
     pub aa_depth: Option<u32>,
+    /// Quadtree: the starting blocks are 2^K pixels a side, K from 1 to 4. Default 3 (8×8).
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=4))]
+    pub aa_block: Option<u32>,
 }
 
 fn threshold(s: &str) -> Result<f32, String> {

@@ -125,18 +125,22 @@ fn from_flag<T>(v: T) -> Spanned<T> {
     Spanned::new(0..0, v)
 }
 
-/// The sampling the flags ask for; the adaptive settings need `--aa adaptive`.
+/// The sampling the flags ask for; the adaptive settings need `--aa adaptive` or `quadtree`.
 fn sampling(o: &Overrides) -> anyhow::Result<Sampling> {
+    let adaptive = |block: u32| {
+        let d = Adaptive::default();
+        Sampling::Adaptive(Adaptive {
+            threshold: o.aa_threshold.unwrap_or(d.threshold),
+            depth: o.aa_depth.unwrap_or(d.depth),
+            block,
+        })
+    };
     Ok(match o.aa {
-        Some(AaArg::Adaptive) => {
-            let d = Adaptive::default();
-            Sampling::Adaptive(Adaptive {
-                threshold: o.aa_threshold.unwrap_or(d.threshold),
-                depth: o.aa_depth.unwrap_or(d.depth),
-            })
-        }
+        Some(AaArg::Quadtree) => adaptive(o.aa_block.unwrap_or(3)),
+        _ if o.aa_block.is_some() => bail!("--aa-block needs --aa quadtree"),
+        Some(AaArg::Adaptive) => adaptive(0),
         _ if o.aa_threshold.is_some() || o.aa_depth.is_some() => {
-            bail!("--aa-threshold and --aa-depth need --aa adaptive")
+            bail!("--aa-threshold and --aa-depth need --aa adaptive or --aa quadtree")
         }
         _ => Sampling::Uniform,
     })
@@ -207,6 +211,7 @@ impl Overrides {
             self.aa_threshold.map(|v| v.to_bits().to_string()),
         );
         put("aa_depth", self.aa_depth.map(|v| v.to_string()));
+        put("aa_block", self.aa_block.map(|v| v.to_string()));
         pairs.join(";")
     }
 
@@ -244,6 +249,7 @@ impl Overrides {
                     o.aa = Some(match v {
                         "uniform" => AaArg::Uniform,
                         "adaptive" => AaArg::Adaptive,
+                        "quadtree" => AaArg::Quadtree,
                         _ => return Err(bad()),
                     })
                 }
@@ -251,6 +257,7 @@ impl Overrides {
                     o.aa_threshold = Some(f32::from_bits(v.parse().map_err(|_| bad())?))
                 }
                 "aa_depth" => o.aa_depth = Some(v.parse().map_err(|_| bad())?),
+                "aa_block" => o.aa_block = Some(v.parse().map_err(|_| bad())?),
                 _ => bail!("an unknown setting `{k}`"),
             }
         }
@@ -274,9 +281,10 @@ mod tests {
             accel: Some(lucent::accel::AccelKind::Octree),
             triangle_test: Some(TriangleTestArg::Projection),
             sandbox: true,
-            aa: Some(AaArg::Adaptive),
+            aa: Some(AaArg::Quadtree),
             aa_threshold: Some(0.1),
             aa_depth: Some(4),
+            aa_block: Some(2),
         };
         assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
         assert_eq!(Overrides::from_pairs("").unwrap(), Overrides::default());

@@ -43,7 +43,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     };
     if let Some(map) = &args.density_map {
         if adaptive.is_none() {
-            bail!("--density-map shows where adaptive sampling went: add --aa adaptive");
+            bail!(
+                "--density-map shows where adaptive sampling went: add --aa adaptive or --aa quadtree"
+            );
         }
         if ImageFormat::from_path(map)? != ImageFormat::Png {
             bail!("{}: the density map is written as PNG", map.display());
@@ -140,7 +142,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         .with_context(|| format!("cannot write {}", plan.output.display()))?;
         let sampled = match adaptive {
             Some(a) => format!(
-                "adaptive (threshold {}, depth {}): {:.2} corner rays per pixel",
+                "{} (threshold {}, depth {}): {:.2} corner rays per pixel",
+                if a.block > 0 {
+                    format!("quadtree of {}×{} blocks", 1 << a.block, 1 << a.block)
+                } else {
+                    "adaptive".to_string()
+                },
                 a.threshold,
                 a.depth,
                 rendered.stats.rays.camera as f64 / (f64::from(w) * f64::from(h))

@@ -48,6 +48,9 @@ fn adaptive_settings_need_adaptive_sampling() {
         &["render", "--aa", "adaptive", "--density-map", "m.exr"],
         &["render", "--aa", "adaptive", "--aa-depth", "9"],
         &["render", "--aa", "adaptive", "--aa-threshold", "-1"],
+        &["render", "--aa-block", "2"],
+        &["render", "--aa", "adaptive", "--aa-block", "2"],
+        &["render", "--aa", "quadtree", "--aa-block", "5"],
     ] {
         let output = run(dir.path(), args);
         let stderr = String::from_utf8_lossy(&output.stderr);
@@ -56,6 +59,30 @@ fn adaptive_settings_need_adaptive_sampling() {
         assert!(!stderr.contains("panicked"), "{stderr}");
         assert!(!dir.path().join("render.png").exists());
     }
+}
+
+#[test]
+fn a_quadtree_render_takes_fewer_rays_than_adaptive() {
+    let dir = tempfile::tempdir().unwrap();
+    let rays = |aa: &str| {
+        let mut args = vec![
+            "render",
+            "-o",
+            "q.pfm",
+            "--aa",
+            aa,
+            "--density-map",
+            "q.png",
+        ];
+        args.extend(SMALL);
+        let output = run(dir.path(), &args);
+        assert_success(&output);
+        let stdout = String::from_utf8_lossy(&output.stdout).to_string();
+        let camera = stdout.split("(camera ").nth(1).unwrap();
+        camera.split(',').next().unwrap().parse::<u64>().unwrap()
+    };
+    let (quadtree, adaptive) = (rays("quadtree"), rays("adaptive"));
+    assert!(quadtree < adaptive, "{quadtree} {adaptive}");
 }
 
 #[test]

@@ -182,7 +182,11 @@ pub fn render(
 ) -> Result<Rendered, RenderError> {
     let begin = Instant::now();
     let adaptive = match settings.sampling {
-        Sampling::Adaptive(a) => Some(a),
+        // Quadtree blocks stay inside tiles: at most the largest power of two dividing them.
+        Sampling::Adaptive(a) => Some(Adaptive {
+            block: a.block.min(settings.tile_size.max(1).trailing_zeros()),
+            ..a
+        }),
         Sampling::Uniform => None,
     };
     // An adaptive pixel is one film sample.
@@ -357,19 +361,27 @@ fn render_tile_adaptive(
     let mut stats = RayStats::default();
     let mut taken = 0;
     let mut used = Vec::with_capacity(tile.pixel_count() as usize);
-    for y in tile.y0..tile.y1 {
-        for x in tile.x0..tile.x1 {
-            let (px, py) = (x - tile.x0, y - tile.y0);
-            if part.samples(px, py) > 0 {
+    let size = 1u32 << corners.adaptive.block;
+    'blocks: for by in (tile.y0..tile.y1).step_by(size as usize) {
+        for bx in (tile.x0..tile.x1).step_by(size as usize) {
+            let (x1, y1) = ((bx + size).min(tile.x1), (by + size).min(tile.y1));
+            let done =
+                (by..y1).all(|y| (bx..x1).all(|x| part.samples(x - tile.x0, y - tile.y0) > 0));
+            if done {
                 continue;
             }
             if cancel.load(Ordering::Relaxed) {
-                break;
+                break 'blocks;
             }
-            let (value, n) = corners.pixel(x, y, &mut stats);
-            part.add_sample(px, py, Some(value), 1.0);
-            used.push((x, y, n));
-            taken += 1;
+            corners.block((bx, by), size, &mut stats, &mut |x, y, value, n| {
+                let (px, py) = (x - tile.x0, y - tile.y0);
+                // A block a resumed render finished in part keeps the pixels it has.
+                if part.samples(px, py) == 0 {
+                    part.add_sample(px, py, Some(value), 1.0);
+                    used.push((x, y, n));
+                    taken += 1;
+                }
+            });
         }
     }
     let width = corners.scene.camera.width() as usize;

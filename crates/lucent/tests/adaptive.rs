@@ -35,7 +35,11 @@ fn adaptive(scene: &Scene, threshold: f32, depth: u32, threads: usize, tile: u32
         integrator: Integrator::Raycast,
         threads,
         tile_size: tile,
-        sampling: Sampling::Adaptive(Adaptive { threshold, depth }),
+        sampling: Sampling::Adaptive(Adaptive {
+            threshold,
+            depth,
+            block: 0,
+        }),
         ..RenderSettings::default()
     };
     let cancel = AtomicBool::new(false);
@@ -138,4 +142,88 @@ fn edge_pixels_approach_the_covered_area() {
         }
     }
     assert!(err[1] < err[0] / 4.0, "{err:?}");
+}
+
+fn quadtree(scene: &Scene, threshold: f32, block: u32, threads: usize) -> Rendered {
+    let settings = RenderSettings {
+        integrator: Integrator::Raycast,
+        threads,
+        tile_size: 16,
+        sampling: Sampling::Adaptive(Adaptive {
+            threshold,
+            depth: 2,
+            block,
+        }),
+        ..RenderSettings::default()
+    };
+    let cancel = AtomicBool::new(false);
+    let hooks = Hooks {
+        cancel: &cancel,
+        progress: &|_, _| {},
+        checkpoint: None,
+    };
+    render(scene, &settings, None, &hooks).unwrap()
+}
+
+#[test]
+fn a_quadtree_starts_with_one_corner_per_block() {
+    let scene = scene();
+    // No split anywhere: a block inside the image takes its 4 corners; a block that crosses
+    // the image's right or bottom edge is split into quarters, down to pixels, which look at
+    // their neighbours' corners too. Each distinct corner is one ray.
+    fn corners(x: u32, y: u32, size: u32, out: &mut std::collections::HashSet<(u32, u32)>) {
+        if x >= W || y >= H {
+            return;
+        }
+        let square = |x: u32, y: u32, s: u32| [(x, y), (x + s, y), (x, y + s), (x + s, y + s)];
+        if size == 1 {
+            // A pixel also looks at the corners of its neighbours (the neighbour test).
+            out.extend(square(x, y, 1));
+            let (x, y) = (x as i64, y as i64);
+            for (nx, ny) in [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)] {
+                if (0..W as i64).contains(&nx) && (0..H as i64).contains(&ny) {
+                    out.extend(square(nx as u32, ny as u32, 1));
+                }
+            }
+            return;
+        }
+        if x + size <= W && y + size <= H {
+            out.extend(square(x, y, size));
+            return;
+        }
+        let h = size / 2;
+        for (bx, by) in [(x, y), (x + h, y), (x, y + h), (x + h, y + h)] {
+            corners(bx, by, h, out);
+        }
+    }
+    let mut expected = std::collections::HashSet::new();
+    for y in (0..H).step_by(8) {
+        for x in (0..W).step_by(8) {
+            corners(x, y, 8, &mut expected);
+        }
+    }
+    let r = quadtree(&scene, f32::INFINITY, 3, 2);
+    assert_eq!(r.stats.rays.camera, expected.len() as u64);
+    assert!(expected.len() < ((W + 1) * (H + 1) / 3) as usize);
+    // Threshold 0 splits every block down to the full lattice, as adaptive sampling does.
+    let full = quadtree(&scene, 0.0, 3, 2);
+    assert_eq!(full.stats.rays.camera, u64::from((4 * W + 1) * (4 * H + 1)));
+    assert_eq!(full.film, adaptive(&scene, 0.0, 2, 2, 16).film);
+}
+
+#[test]
+fn a_quadtree_finds_the_edges_and_repeats_exactly() {
+    let scene = scene();
+    let a = quadtree(&scene, 0.1, 3, 1);
+    let b = quadtree(&scene, 0.1, 3, 2);
+    assert_eq!(a.film, b.film);
+    // Far fewer rays than per-pixel adaptive sampling, and the same image away from edges:
+    // inside the sphere and in the empty corners every pixel is exact.
+    let per_pixel = adaptive(&scene, 0.1, 2, 2, 16);
+    assert!(a.stats.rays.camera < per_pixel.stats.rays.camera);
+    let exact = (0..H)
+        .flat_map(|y| (0..W).map(move |x| (x, y)))
+        .filter(|&(x, y)| a.film.pixel(x, y) == per_pixel.film.pixel(x, y))
+        .count();
+    assert!(exact > (W * H * 3 / 4) as usize, "{exact}");
 }

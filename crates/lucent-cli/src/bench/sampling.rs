@@ -2,9 +2,10 @@
 //!
 //! One scene (the built-in one by default) at one size: a 256-spp uniform reference (another
 //! seed than the measured renders), then uniform renders at 1, 4, 16 and 64 spp and adaptive
-//! renders at several thresholds (depth 3), each with its root-mean-square error against the
-//! reference (linear radiance, every channel), camera rays per pixel and wall time. The last
-//! lines say what adaptive sampling needs to be as close as 16 uniform samples per pixel.
+//! renders at several thresholds (depth 3) and two quadtrees, each with its root-mean-square
+//! error against the reference (linear radiance, every channel), camera rays per pixel and
+//! wall time. The last line says what adaptive sampling needs to be as close as 16 uniform
+//! samples per pixel.
 
 use crate::cli::{AaArg, Overrides};
 use crate::job::Job;
@@ -88,6 +89,20 @@ pub fn run(
         })?;
         adaptive.push(line(format!("adaptive {threshold} (depth {})", a.depth), r));
     }
+    let mut quadtree = Vec::new();
+    for block in [2, 3] {
+        let a = Adaptive {
+            block,
+            ..Adaptive::default()
+        };
+        let r = go(RenderSettings {
+            spp: 1,
+            sampling: Sampling::Adaptive(a),
+            ..base
+        })?;
+        let side = 1 << block;
+        quadtree.push(line(format!("quadtree {side}×{side} {}", a.threshold), r));
+    }
 
     println!(
         "{}×{}, {} threads, error against {REFERENCE_SPP} spp (RMSE of linear radiance)",
@@ -97,7 +112,7 @@ pub fn run(
         "{:<26} {:>12} {:>10} {:>10}",
         "sampling", "rays/pixel", "seconds", "RMSE"
     );
-    for l in uniform.iter().chain(&adaptive) {
+    for l in uniform.iter().chain(&adaptive).chain(&quadtree) {
         println!(
             "{:<26} {:>12.2} {:>10.3} {:>10.5}",
             l.label, l.rays_per_pixel, l.seconds, l.rmse

@@ -42,6 +42,9 @@ pub struct Adaptive {
     pub threshold: f32,
     /// How many times a pixel may be halved (0..=MAX_DEPTH).
     pub depth: u32,
+    /// Quadtree over the screen: blocks of `2^block` pixels a side start with one corner
+    /// each and are split where their corners differ, down to pixels (0: start at pixels).
+    pub block: u32,
 }
 
 impl Default for Adaptive {
@@ -49,6 +52,7 @@ impl Default for Adaptive {
         Self {
             threshold: 0.1,
             depth: 3,
+            block: 0,
         }
     }
 }
@@ -219,6 +223,58 @@ impl BandCorners<'_> {
         let busy = self.busy_neighbour(x, y, &mut inner, stats);
         let value = self.square(x * size, y * size, size, busy, &mut inner, stats, &mut used);
         (value, used)
+    }
+
+    /// Calls `put(x, y, colour, corners used)` for every pixel of the block of `size` pixels
+    /// a side at `(x0, y0)`, clipped to the image: a block whose four corners agree is filled
+    /// by bilinear interpolation between them (its pixels used no corner of their own); one
+    /// whose corners differ, or that crosses the image's edge, is split, down to pixels, which
+    /// are sampled as [`BandCorners::pixel`] does.
+    pub fn block(
+        &self,
+        (x0, y0): (u32, u32),
+        size: u32,
+        stats: &mut RayStats,
+        put: &mut dyn FnMut(u32, u32, Rgb, u32),
+    ) {
+        let (w, h) = (self.band.columns - 1, self.scene.camera.height());
+        if x0 >= w || y0 >= h {
+            return;
+        }
+        if size == 1 {
+            let (value, used) = self.pixel(x0, y0, stats);
+            put(x0, y0, value, used);
+            return;
+        }
+        let inside = x0 + size <= w && y0 + size <= h;
+        if inside {
+            let step = self.adaptive.depth;
+            let mut inner = Inner::default();
+            let (i, j, s) = (x0 << step, y0 << step, size << step);
+            let c = [
+                self.corner(i, j, &mut inner, stats),
+                self.corner(i + s, j, &mut inner, stats),
+                self.corner(i, j + s, &mut inner, stats),
+                self.corner(i + s, j + s, &mut inner, stats),
+            ];
+            if spread(&c) < self.adaptive.threshold {
+                for y in y0..y0 + size {
+                    for x in x0..x0 + size {
+                        let u = (x - x0) as f32 + 0.5;
+                        let v = (y - y0) as f32 + 0.5;
+                        let (u, v) = (u / size as f32, v / size as f32);
+                        let top = c[0] * (1.0 - u) + c[1] * u;
+                        let bottom = c[2] * (1.0 - u) + c[3] * u;
+                        put(x, y, top * (1.0 - v) + bottom * v, 0);
+                    }
+                }
+                return;
+            }
+        }
+        let h = size / 2;
+        for (bx, by) in [(x0, y0), (x0 + h, y0), (x0, y0 + h), (x0 + h, y0 + h)] {
+            self.block((bx, by), h, stats, put);
+        }
     }
 
     /// True when a pixel beside `(x, y)` (left, right, above or below) has corners that differ:
