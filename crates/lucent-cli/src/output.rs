@@ -57,6 +57,7 @@ pub fn write_atomically(
     write: impl FnOnce(&mut BufWriter<File>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     let tmp = temporary_path(path);
+    lock_temporaries().push(tmp.clone());
     let result = (|| {
         let file =
             File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
@@ -76,7 +77,23 @@ pub fn write_atomically(
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
+    lock_temporaries().retain(|t| *t != tmp);
     result
+}
+
+/// Temporary files being written, for [`remove_temporaries`].
+static TEMPORARIES: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn lock_temporaries() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Removes the temporary files of writes still under way: for a process about to exit in the
+/// middle of them (a second Ctrl-C), so that it leaves no `.tmp-PID` files behind.
+pub fn remove_temporaries() {
+    for tmp in lock_temporaries().drain(..) {
+        let _ = std::fs::remove_file(tmp);
+    }
 }
 
 /// Checks that `path`'s folder exists and takes new files (by creating and removing a probe).

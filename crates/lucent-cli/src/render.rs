@@ -85,6 +85,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     ctrlc::set_handler(move || {
         if handler_flag.swap(true, Ordering::SeqCst) {
             // A second signal: the user does not want to wait for the image and checkpoint.
+            crate::output::remove_temporaries();
             std::process::exit(i32::from(INTERRUPTED));
         }
     })
