@@ -31,15 +31,20 @@ fn scene() -> Scene {
 }
 
 fn adaptive(scene: &Scene, threshold: f32, depth: u32, threads: usize, tile: u32) -> Rendered {
+    let a = Adaptive {
+        threshold,
+        depth,
+        block: 0,
+    };
+    render_with(scene, a, threads, tile)
+}
+
+fn render_with(scene: &Scene, a: Adaptive, threads: usize, tile: u32) -> Rendered {
     let settings = RenderSettings {
         integrator: Integrator::Raycast,
         threads,
         tile_size: tile,
-        sampling: Sampling::Adaptive(Adaptive {
-            threshold,
-            depth,
-            block: 0,
-        }),
+        sampling: Sampling::Adaptive(a),
         ..RenderSettings::default()
     };
     let cancel = AtomicBool::new(false);
@@ -145,24 +150,12 @@ fn edge_pixels_approach_the_covered_area() {
 }
 
 fn quadtree(scene: &Scene, threshold: f32, block: u32, threads: usize) -> Rendered {
-    let settings = RenderSettings {
-        integrator: Integrator::Raycast,
-        threads,
-        tile_size: 16,
-        sampling: Sampling::Adaptive(Adaptive {
-            threshold,
-            depth: 2,
-            block,
-        }),
-        ..RenderSettings::default()
+    let a = Adaptive {
+        threshold,
+        depth: 2,
+        block,
     };
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
-    render(scene, &settings, None, &hooks).unwrap()
+    render_with(scene, a, threads, 16)
 }
 
 #[test]

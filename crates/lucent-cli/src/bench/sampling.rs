@@ -76,18 +76,24 @@ pub fn run(
         let r = go(RenderSettings { spp, ..base })?;
         uniform.push(line(format!("uniform {spp} spp"), r));
     }
+    let adaptive_line = |a: Adaptive, label: String| -> anyhow::Result<Line> {
+        let r = go(RenderSettings {
+            spp: 1,
+            sampling: Sampling::Adaptive(a),
+            ..base
+        })?;
+        Ok(line(label, r))
+    };
     let mut adaptive = Vec::new();
     for threshold in THRESHOLDS {
         let a = Adaptive {
             threshold,
             ..Adaptive::default()
         };
-        let r = go(RenderSettings {
-            spp: 1,
-            sampling: Sampling::Adaptive(a),
-            ..base
-        })?;
-        adaptive.push(line(format!("adaptive {threshold} (depth {})", a.depth), r));
+        adaptive.push(adaptive_line(
+            a,
+            format!("adaptive {threshold} (depth {})", a.depth),
+        )?);
     }
     let mut quadtree = Vec::new();
     for block in [2, 3] {
@@ -95,13 +101,11 @@ pub fn run(
             block,
             ..Adaptive::default()
         };
-        let r = go(RenderSettings {
-            spp: 1,
-            sampling: Sampling::Adaptive(a),
-            ..base
-        })?;
         let side = 1 << block;
-        quadtree.push(line(format!("quadtree {side}×{side} {}", a.threshold), r));
+        quadtree.push(adaptive_line(
+            a,
+            format!("quadtree {side}×{side} {}", a.threshold),
+        )?);
     }
 
     println!(
