@@ -144,6 +144,9 @@ pub fn import_obj(
             )),
         }
     }
+    if obj.triangle_count() == 0 {
+        warnings.push(format!("{}: the file has no faces", path.display()));
+    }
     let mut desc = empty_desc();
     let used = obj.used_materials();
     for (i, name) in used.iter().enumerate() {

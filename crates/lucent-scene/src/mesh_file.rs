@@ -6,7 +6,7 @@ use crate::obj::ObjFile;
 use crate::paths::LoadOptions;
 use glam::Vec3;
 use lucent::Rgb;
-use lucent::film::tonemap::srgb8_to_linear;
+use lucent::film::tonemap::srgb_to_linear;
 use lucent::shape::Mesh;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -143,7 +143,7 @@ fn ply_mesh(bytes: &[u8], part: Option<&str>, path: &Path) -> Result<Mesh, LoadE
         .colors
         .unwrap_or_default()
         .into_iter()
-        .map(|c| Rgb::from(c.map(|v| srgb8_to_linear((v.clamp(0.0, 1.0) * 255.0).round() as u8))))
+        .map(|c| Rgb::from(c.map(srgb_to_linear)))
         .collect();
     Ok(mesh)
 }

@@ -10,6 +10,7 @@
 use crate::error::LoadError;
 use glam::{Vec2, Vec3};
 use lucent::Rgb;
+use lucent::film::tonemap::srgb_to_linear;
 use lucent::shape::Mesh;
 use std::path::Path;
 
@@ -143,7 +144,18 @@ impl ObjFile {
                 .collect();
         }
         if !self.colors.is_empty() {
-            mesh.colors = corners.iter().map(|c| self.colors[c[0] as usize]).collect();
+            // Written as display values (8-bit colours over 255), as PLY colours are.
+            let linear = |c: Rgb| {
+                Rgb::new(
+                    srgb_to_linear(c.r),
+                    srgb_to_linear(c.g),
+                    srgb_to_linear(c.b),
+                )
+            };
+            mesh.colors = corners
+                .iter()
+                .map(|c| linear(self.colors[c[0] as usize]))
+                .collect();
         }
         Some(mesh)
     }
@@ -468,11 +480,18 @@ mod tests {
 
     #[test]
     fn vertex_colours_are_read() {
-        let obj = parse("v 0 0 0\nv 1 0 0 1 0 0\nv 0 1 0 0 1 0\nf 1 2 3\n").unwrap();
+        let obj = parse("v 0 0 0\nv 1 0 0 1 0 0\nv 0 1 0 0 1 0.5\nf 1 2 3\n").unwrap();
         let m = obj.mesh(None).unwrap();
+        // Display values, decoded from sRGB: 0.5 is a linear 0.214.
+        let half = srgb_to_linear(0.5);
+        assert!((half - 0.214).abs() < 1e-3);
         assert_eq!(
             m.colors,
-            vec![Rgb::WHITE, Rgb::new(1.0, 0.0, 0.0), Rgb::new(0.0, 1.0, 0.0)]
+            vec![
+                Rgb::WHITE,
+                Rgb::new(1.0, 0.0, 0.0),
+                Rgb::new(0.0, 1.0, half)
+            ]
         );
     }
 

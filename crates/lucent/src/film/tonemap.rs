@@ -21,7 +21,17 @@ pub fn linear_to_srgb(linear: f32) -> f32 {
 
 /// The inverse of [`srgb8`]'s transfer function, for reading 8-bit sRGB back as linear.
 pub fn srgb8_to_linear(v: u8) -> f32 {
-    let e = f32::from(v) / 255.0;
+    srgb_to_linear(f32::from(v) / 255.0)
+}
+
+/// The inverse of [`linear_to_srgb`]: an sRGB-encoded value in [0, 1] (clamped; NaN as 0) as
+/// linear.
+pub fn srgb_to_linear(encoded: f32) -> f32 {
+    let e = if encoded.is_nan() {
+        0.0
+    } else {
+        encoded.clamp(0.0, 1.0)
+    };
     if e <= 0.040_45 {
         e / 12.92
     } else {
