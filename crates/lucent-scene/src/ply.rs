@@ -595,6 +595,16 @@ mod tests {
     }
 
     #[test]
+    fn an_element_without_properties_is_read_past_whatever_its_count() {
+        // Such an element takes no bytes, so no size check bounds its count: it is not looped over.
+        let text = ASCII.replace(
+            "element face 1\n",
+            "element junk 18446744073709551615\nelement face 1\n",
+        );
+        assert_eq!(parse(text.as_bytes()).unwrap().triangles.len(), 2);
+    }
+
+    #[test]
     fn strips_restart_alternate_and_drop_degenerates() {
         let mut out = vec![];
         push_strips(&[0, 1, 2, 3, 3, 4, -1, 5, 6, 7], &mut out);
