@@ -39,9 +39,20 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
     }
     let s = &loaded.settings;
     let (w, h) = (scene.camera.width(), scene.camera.height());
+    let sampling = match s.sampling {
+        lucent::render::Sampling::Uniform => format!("{} spp", s.spp),
+        lucent::render::Sampling::Adaptive(a) if a.block > 0 => format!(
+            "quadtree of {0}×{0} blocks (threshold {1}, depth {2})",
+            1 << a.block,
+            a.threshold,
+            a.depth
+        ),
+        lucent::render::Sampling::Adaptive(a) => {
+            format!("adaptive (threshold {}, depth {})", a.threshold, a.depth)
+        }
+    };
     println!(
-        "image:       {w}×{h}, {} spp, integrator {}",
-        s.spp,
+        "image:       {w}×{h}, {sampling}, integrator {}",
         s.integrator.name()
     );
     let a = scene.accel_report();

@@ -3,10 +3,9 @@
 
 use crate::cli::{AaArg, IntegratorArg, Overrides, TriangleTestArg};
 use anyhow::{anyhow, bail};
-use lucent::render::Sampling;
-use lucent::schedule::adaptive::Adaptive;
 use lucent_scene::desc::IntegratorName;
-use lucent_scene::desc::settings::TriangleTestName;
+use lucent_scene::desc::settings::{SamplingName, TriangleTestName};
+use lucent_scene::desc::values::Finite;
 use lucent_scene::hash::Fingerprint;
 use lucent_scene::{LoadOptions, Loaded, SceneFile, Spanned};
 use std::path::{Path, PathBuf};
@@ -31,13 +30,8 @@ impl Job {
             Some(p) => SceneFile::read_with(p, &options)?,
             None => SceneFile::default_scene(),
         };
-        apply(&mut file, overrides);
-        let mut loaded = file.build()?;
-        loaded.settings.sampling = sampling(overrides)?;
-        if let Sampling::Adaptive(_) = loaded.settings.sampling {
-            // An adaptive pixel is one film sample, whatever the scene asks for.
-            loaded.settings.spp = 1;
-        }
+        apply(&mut file, overrides)?;
+        let loaded = file.build()?;
         for w in &loaded.warnings {
             eprintln!("warning: {w}");
         }
@@ -125,29 +119,34 @@ fn from_flag<T>(v: T) -> Spanned<T> {
     Spanned::new(0..0, v)
 }
 
-/// The sampling the flags ask for; the adaptive settings need `--aa adaptive` or `quadtree`.
-fn sampling(o: &Overrides) -> anyhow::Result<Sampling> {
-    let adaptive = |block: u32| {
-        let d = Adaptive::default();
-        Sampling::Adaptive(Adaptive {
-            threshold: o.aa_threshold.unwrap_or(d.threshold),
-            depth: o.aa_depth.unwrap_or(d.depth),
-            block,
-        })
-    };
-    Ok(match o.aa {
-        Some(AaArg::Quadtree) => adaptive(o.aa_block.unwrap_or(3)),
-        _ if o.aa_block.is_some() => bail!("--aa-block needs --aa quadtree"),
-        Some(AaArg::Adaptive) => adaptive(0),
-        _ if o.aa_threshold.is_some() || o.aa_depth.is_some() => {
-            bail!("--aa-threshold and --aa-depth need --aa adaptive or --aa quadtree")
-        }
-        _ => Sampling::Uniform,
-    })
-}
-
-fn apply(file: &mut SceneFile, o: &Overrides) {
+fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
     let d = &mut file.desc;
+    if let Some(a) = o.aa {
+        d.render.aa = match a {
+            AaArg::Uniform => SamplingName::Uniform,
+            AaArg::Adaptive => SamplingName::Adaptive,
+            AaArg::Quadtree => SamplingName::Quadtree,
+        };
+    }
+    // Checked here, so that the errors name the flags rather than the file.
+    let aa = d.render.aa;
+    if aa == SamplingName::Uniform
+        && (o.aa_threshold.is_some() || o.aa_depth.is_some() || o.aa_block.is_some())
+    {
+        bail!("--aa-threshold, --aa-depth and --aa-block need --aa adaptive or quadtree");
+    }
+    if aa == SamplingName::Adaptive && o.aa_block.is_some() {
+        bail!("--aa-block needs --aa quadtree");
+    }
+    if let Some(t) = o.aa_threshold {
+        d.render.aa_threshold = Some(from_flag(Finite(t)));
+    }
+    if let Some(v) = o.aa_depth {
+        d.render.aa_depth = Some(from_flag(v));
+    }
+    if let Some(v) = o.aa_block {
+        d.render.aa_block = Some(from_flag(v));
+    }
     if let Some(w) = o.width {
         d.image.width = from_flag(w);
     }
@@ -178,6 +177,7 @@ fn apply(file: &mut SceneFile, o: &Overrides) {
             TriangleTestArg::Projection => TriangleTestName::Projection,
         };
     }
+    Ok(())
 }
 
 impl Overrides {

@@ -279,3 +279,47 @@ fn bad_mesh_file_names_the_mesh_files_line() {
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn sampling_settings_belong_to_their_sampling() {
+    assert_error(
+        &format!("{CAMERA}[render]\naa_threshold = 0.2\n"),
+        5,
+        16,
+        "`aa_threshold` needs `aa = \"adaptive\"` or `\"quadtree\"`",
+    );
+    assert_error(
+        &format!("{CAMERA}[render]\naa = \"adaptive\"\naa_block = 2\n"),
+        6,
+        12,
+        "`aa_block` needs `aa = \"quadtree\"`",
+    );
+    assert_error(
+        &format!("{CAMERA}[render]\naa = \"quadtree\"\naa_depth = 9\n"),
+        6,
+        12,
+        "aa_depth must be at most 8",
+    );
+    assert_error(
+        &format!("{CAMERA}[render]\naa = \"quadtree\"\naa_block = 5\n"),
+        6,
+        12,
+        "aa_block must be between 1 and 4",
+    );
+    assert_error(&format!("{CAMERA}[render]\naa = \"jitter\"\n"), 5, 6, "");
+    // A good one: adaptive settings in the file, one film sample per pixel.
+    let text = format!(
+        "{CAMERA}[image]\nsamples = 16\n[render]\naa = \"quadtree\"\naa_threshold = 0.05\naa_block = 2\n"
+    );
+    let file = SceneFile::parse(PathBuf::from("s.toml"), PathBuf::new(), text).unwrap();
+    let settings = file.build().unwrap().settings;
+    assert_eq!(settings.spp, 1);
+    assert_eq!(
+        settings.sampling,
+        lucent::render::Sampling::Adaptive(lucent::schedule::adaptive::Adaptive {
+            threshold: 0.05,
+            depth: 3,
+            block: 2,
+        })
+    );
+}

@@ -7,7 +7,7 @@ pub mod materials;
 mod objects;
 pub mod shapes;
 
-use crate::desc::settings::TriangleTestName;
+use crate::desc::settings::{RenderDesc, SamplingName, TriangleTestName};
 use crate::desc::{IntegratorName, SceneDesc};
 use crate::error::{LoadError, Source};
 use crate::hash::Fingerprint;
@@ -16,8 +16,9 @@ use lucent::Rgb;
 use lucent::accel::AccelKind;
 use lucent::camera::Camera;
 use lucent::integrator::{Integrator, Whitted};
-use lucent::render::RenderSettings;
+use lucent::render::{RenderSettings, Sampling};
 use lucent::scene::{Scene, SceneBuilder};
+use lucent::schedule::adaptive::{Adaptive, MAX_DEPTH as ADAPTIVE_MAX_DEPTH};
 use lucent::shape::TriangleTest;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -287,12 +288,78 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
             min_weight,
         }),
     };
+    let sampling = sampling(r, source)?;
     Ok(RenderSettings {
         integrator,
-        spp,
+        // An adaptive pixel is one film sample.
+        spp: if sampling == Sampling::Uniform {
+            spp
+        } else {
+            1
+        },
         seed: r.seed,
+        sampling,
         ..RenderSettings::default()
     })
+}
+
+/// `[render] aa` and its settings, checked.
+fn sampling(r: &RenderDesc, source: &Source) -> Result<Sampling, LoadError> {
+    let span = |v: &Option<Spanned<_>>| v.as_ref().map(|s: &Spanned<_>| s.span());
+    let threshold = r.aa_threshold.as_ref().map(|t| (t.get_ref().0, t.span()));
+    let depth = r.aa_depth.as_ref().map(|d| (*d.get_ref(), d.span()));
+    let block = r.aa_block.as_ref().map(|b| (*b.get_ref(), b.span()));
+    let present = [
+        ("aa_threshold", threshold.as_ref().map(|t| t.1.clone())),
+        ("aa_depth", span(&r.aa_depth)),
+        ("aa_block", span(&r.aa_block)),
+    ];
+    let d = Adaptive::default();
+    let block = match r.aa {
+        SamplingName::Uniform => {
+            if let Some((key, span)) = present.iter().find_map(|(k, s)| s.clone().map(|s| (k, s))) {
+                return Err(source.error(
+                    span,
+                    format!("`{key}` needs `aa = \"adaptive\"` or `\"quadtree\"`"),
+                ));
+            }
+            return Ok(Sampling::Uniform);
+        }
+        SamplingName::Adaptive => {
+            if let Some((_, span)) = block {
+                return Err(source.error(span, "`aa_block` needs `aa = \"quadtree\"`"));
+            }
+            0
+        }
+        SamplingName::Quadtree => match block {
+            Some((b, span)) => {
+                check(
+                    source,
+                    span,
+                    (1..=4).contains(&b),
+                    "aa_block must be between 1 and 4",
+                )?;
+                b
+            }
+            None => 3,
+        },
+    };
+    if let Some((t, span)) = threshold.clone() {
+        check(source, span, t >= 0.0, "aa_threshold must be at least 0")?;
+    }
+    if let Some((v, span)) = depth.clone() {
+        check(
+            source,
+            span,
+            v <= ADAPTIVE_MAX_DEPTH,
+            &format!("aa_depth must be at most {ADAPTIVE_MAX_DEPTH}"),
+        )?;
+    }
+    Ok(Sampling::Adaptive(Adaptive {
+        threshold: threshold.map_or(d.threshold, |t| t.0),
+        depth: depth.map_or(d.depth, |v| v.0),
+        block,
+    }))
 }
 
 /// Refuses the keys of `present` that a `kind` does not take.

@@ -67,6 +67,19 @@ pub enum TriangleTestName {
     Projection,
 }
 
+/// How pixels are sampled (`[render] aa`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SamplingName {
+    /// `[image] samples` stratified, jittered samples per pixel.
+    #[default]
+    Uniform,
+    /// Whitted's adaptive supersampling at pixel corners.
+    Adaptive,
+    /// Corners of blocks of pixels first, then as `adaptive`.
+    Quadtree,
+}
+
 /// `[render]`.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
@@ -83,6 +96,17 @@ pub struct RenderDesc {
     pub accelerator: Spanned<String>,
     /// `"watertight"` (default) or `"projection"`.
     pub triangle_test: TriangleTestName,
+    /// `"uniform"` (default), `"adaptive"` or `"quadtree"`.
+    pub aa: SamplingName,
+    /// Adaptive and quadtree: the corners' difference that splits (default 0.1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aa_threshold: Option<Spanned<Finite>>,
+    /// Adaptive and quadtree: how many times a pixel may be halved (default 3).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aa_depth: Option<Spanned<u32>>,
+    /// Quadtree: blocks of 2^aa_block pixels a side (default 3).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aa_block: Option<Spanned<u32>>,
 }
 
 impl Default for RenderDesc {
@@ -94,6 +118,10 @@ impl Default for RenderDesc {
             seed: 0,
             accelerator: Spanned::new(0..0, lucent::accel::AccelKind::default().name().to_string()),
             triangle_test: TriangleTestName::default(),
+            aa: SamplingName::default(),
+            aa_threshold: None,
+            aa_depth: None,
+            aa_block: None,
         }
     }
 }
