@@ -135,6 +135,7 @@ pub fn import_gltf(
     let mut used = vec![false; names.len()];
     let mut default_used = false;
     let mut decoded: HashMap<(usize, usize), bool> = HashMap::new();
+    let mut same_geometry: HashMap<Geometry, (usize, usize)> = HashMap::new();
     let mut objects = Vec::new();
     let mut lights = Vec::new();
     let mut camera: Option<(CameraDesc, Option<f32>)> = None;
@@ -163,7 +164,11 @@ pub fn import_gltf(
                 ));
             }
             for prim in mesh.primitives().filter(|_| placeable) {
-                let key = (mesh.index(), prim.index());
+                // Primitives of the same accessors are one part: the build stores it once and
+                // places it as instances (a small file cannot multiply a large buffer).
+                let key = *same_geometry
+                    .entry(geometry(&prim))
+                    .or_insert((mesh.index(), prim.index()));
                 let triangles = match decoded.get(&key) {
                     Some(&t) => t,
                     None => {
@@ -287,6 +292,36 @@ pub fn import_gltf(
     })
 }
 
+/// What makes a primitive's triangles: its topology and where its accessors read — the same
+/// data through two accessors is the same geometry.
+type Geometry = (String, Option<String>, Vec<(String, String)>);
+
+fn geometry(prim: &gltf::Primitive) -> Geometry {
+    let source = |a: &gltf::Accessor| match (a.view(), a.sparse()) {
+        (Some(view), None) => format!(
+            "view {} +{} {}×{:?} {:?} {}",
+            view.index(),
+            a.offset(),
+            a.count(),
+            a.dimensions(),
+            a.data_type(),
+            a.normalized()
+        ),
+        // Sparse or zero-filled data: the accessor alone says what it holds.
+        _ => format!("accessor {}", a.index()),
+    };
+    let mut attributes: Vec<(String, String)> = prim
+        .attributes()
+        .map(|(semantic, accessor)| (format!("{semantic:?}"), source(&accessor)))
+        .collect();
+    attributes.sort();
+    (
+        format!("{:?}", prim.mode()),
+        prim.indices().map(|a| source(&a)),
+        attributes,
+    )
+}
+
 /// The triangles of `part` (`"MESH/PRIMITIVE"`, indices into the file's meshes, in the mesh's
 /// own space, no node transform), or with `part == None` every primitive of every node of the
 /// file's scene, placed by the node transforms (world space), merged into one mesh.
@@ -305,7 +340,34 @@ pub fn read_gltf_part(
     options: &LoadOptions,
     inputs: &mut Fingerprint,
 ) -> Result<Mesh, LoadError> {
-    let asset = Asset::open(path, options, inputs)?;
+    GltfFile::open(path, options, inputs)?.part(part)
+}
+
+/// A glTF file read once (its document and buffers), whose parts are decoded as asked: a
+/// scene of many primitives reads its buffers once, not once per primitive.
+pub struct GltfFile {
+    asset: Asset,
+}
+
+impl GltfFile {
+    /// Reads the file at `path` and its buffers, adding their bytes to `inputs`.
+    pub fn open(
+        path: &Path,
+        options: &LoadOptions,
+        inputs: &mut Fingerprint,
+    ) -> Result<Self, LoadError> {
+        Ok(Self {
+            asset: Asset::open(path, options, inputs)?,
+        })
+    }
+
+    /// The triangles of `part`, as [`read_gltf_part`] gives them.
+    pub fn part(&self, part: Option<&str>) -> Result<Mesh, LoadError> {
+        part_of(&self.asset, part)
+    }
+}
+
+fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
     let doc = &asset.doc;
     if let Some(part) = part {
         let (m, p) = part

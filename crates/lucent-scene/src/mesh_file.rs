@@ -1,6 +1,7 @@
 //! Mesh files by extension: `.obj` (Wavefront), `.ply` (Stanford), `.gltf` and `.glb` (glTF 2.0).
 
 use crate::error::LoadError;
+use crate::gltf_file::GltfFile;
 use crate::hash::Fingerprint;
 use crate::obj::ObjFile;
 use crate::paths::LoadOptions;
@@ -48,11 +49,12 @@ pub fn read_mesh_part(
     MeshFiles::default().read_part(path, part, options, fingerprint)
 }
 
-/// Mesh files read so far: an OBJ file split into parts by material is parsed once, not
-/// once per part.
+/// Mesh files read so far: an OBJ file split into parts by material, or a glTF file of many
+/// primitives, is read once, not once per part.
 #[derive(Default)]
 pub struct MeshFiles {
     obj: HashMap<PathBuf, Arc<ObjFile>>,
+    gltf: HashMap<PathBuf, Arc<GltfFile>>,
 }
 
 impl MeshFiles {
@@ -67,7 +69,15 @@ impl MeshFiles {
     ) -> Result<Mesh, LoadError> {
         let ext = extension(path);
         if matches!(ext.as_deref(), Some("gltf" | "glb")) {
-            return crate::gltf_file::read_gltf_part(path, part, options, fingerprint);
+            let file = match self.gltf.get(path) {
+                Some(file) => file.clone(),
+                None => {
+                    let file = Arc::new(GltfFile::open(path, options, fingerprint)?);
+                    self.gltf.insert(path.to_path_buf(), file.clone());
+                    file
+                }
+            };
+            return file.part(part);
         }
         let mesh = match ext.as_deref() {
             Some("obj") => {

@@ -539,12 +539,13 @@ fn materials_lights_and_camera_are_described() {
             )
         })
         .collect();
+    // The three primitives read the same accessors: one part, three materials.
     assert_eq!(
         objects,
         [
             ("0/0", "gltf:Wood"),
-            ("0/1", "gltf:Glass"),
-            ("0/2", "gltf:Decal")
+            ("0/0", "gltf:Glass"),
+            ("0/0", "gltf:Decal")
         ],
         "the line primitive is skipped"
     );
@@ -924,4 +925,55 @@ fn mangled_files_never_panic() {
             let _ = import_gltf(&path, &open(), &mut Fingerprint::default());
         }
     }
+}
+
+#[test]
+fn primitives_of_the_same_accessors_are_stored_once() {
+    // 300 meshes whose one primitive reads the same positions and indices, each on its node:
+    // one mesh stored, 300 instances of it, whatever their materials.
+    let dir = Dir::new("shared");
+    let mut a = Asset::default();
+    let pos = a.positions(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let idx = a.indices(&[0, 1, 2], U16);
+    // A second accessor over the same data is the same geometry too.
+    a.accessors.push(a.accessors[idx].clone());
+    let idx2 = a.accessors.len() - 1;
+    let n = 300;
+    let nodes: Vec<String> = (0..n)
+        .map(|i| format!(r#"{{"mesh": {i}, "translation": [{i}, 0, 0]}}"#))
+        .collect();
+    let meshes: Vec<String> = (0..n)
+        .map(|i| {
+            let material = i % 2;
+            let idx = if i % 3 == 0 { idx2 } else { idx };
+            format!(
+                r#"{{"primitives": [{{"attributes": {{"POSITION": {pos}}}, "indices": {idx}, "material": {material}}}]}}"#
+            )
+        })
+        .collect();
+    let roots: Vec<String> = (0..n).map(|i| i.to_string()).collect();
+    let rest = format!(
+        r#""scene": 0, "scenes": [{{"nodes": [{}]}}], "nodes": [{}], "meshes": [{}],
+  "materials": [{{"name": "a"}}, {{"name": "b"}}]"#,
+        roots.join(", "),
+        nodes.join(", "),
+        meshes.join(", ")
+    );
+    let file = a.write_embedded(&dir, "shared.gltf", &rest);
+    let imported = import_gltf(&file, &open(), &mut Fingerprint::default()).unwrap();
+    let parts: std::collections::HashSet<&String> = imported
+        .desc
+        .objects
+        .iter()
+        .map(|o| o.get_ref().part.as_ref().unwrap().get_ref())
+        .collect();
+    assert_eq!(imported.desc.objects.len(), n);
+    assert_eq!(parts.len(), 1, "{parts:?}");
+    let loaded = lucent_scene::SceneFile::read(&file)
+        .unwrap()
+        .build()
+        .unwrap();
+    let counts = loaded.scene.counts();
+    assert_eq!((counts.meshes, counts.instances), (1, n));
+    assert_eq!((counts.triangles, counts.unique_triangles), (n, 1));
 }
