@@ -35,6 +35,34 @@ pub enum IntegratorArg {
     Raycast,
     /// Whitted ray tracing: shadows, reflection, refraction.
     Whitted,
+    /// Debug view: shading normals as colours.
+    #[value(name = "debug:normals")]
+    DebugNormals,
+    /// Debug view: distance along the camera ray.
+    #[value(name = "debug:depth")]
+    DebugDepth,
+    /// Debug view: diffuse colour.
+    #[value(name = "debug:albedo")]
+    DebugAlbedo,
+    /// Debug view: a colour per object.
+    #[value(name = "debug:id")]
+    DebugId,
+    /// Debug view: triangle barycentric weights.
+    #[value(name = "debug:barycentrics")]
+    DebugBarycentrics,
+    /// Debug view: accelerator work per camera ray (heat map).
+    #[value(name = "debug:cost")]
+    DebugCost,
+}
+
+impl IntegratorArg {
+    /// The name on the command line.
+    pub fn name(self) -> String {
+        use clap::ValueEnum;
+        self.to_possible_value()
+            .map(|v| v.get_name().to_string())
+            .unwrap_or_default()
+    }
 }
 
 /// How pixels are sampled.

@@ -160,6 +160,12 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
         d.render.integrator = match i {
             IntegratorArg::Raycast => IntegratorName::Raycast,
             IntegratorArg::Whitted => IntegratorName::Whitted,
+            IntegratorArg::DebugNormals => IntegratorName::DebugNormals,
+            IntegratorArg::DebugDepth => IntegratorName::DebugDepth,
+            IntegratorArg::DebugAlbedo => IntegratorName::DebugAlbedo,
+            IntegratorArg::DebugId => IntegratorName::DebugId,
+            IntegratorArg::DebugBarycentrics => IntegratorName::DebugBarycentrics,
+            IntegratorArg::DebugCost => IntegratorName::DebugCost,
         };
     }
     if let Some(m) = o.max_depth {
@@ -192,10 +198,7 @@ impl Overrides {
         put("width", self.width.map(|v| v.to_string()));
         put("height", self.height.map(|v| v.to_string()));
         put("spp", self.spp.map(|v| v.to_string()));
-        put(
-            "integrator",
-            self.integrator.map(|v| format!("{v:?}").to_lowercase()),
-        );
+        put("integrator", self.integrator.map(IntegratorArg::name));
         put("max_depth", self.max_depth.map(|v| v.to_string()));
         put("seed", self.seed.map(|v| v.to_string()));
         put("accel", self.accel.map(|v| v.name().to_string()));
@@ -228,11 +231,10 @@ impl Overrides {
                 "height" => o.height = Some(v.parse().map_err(|_| bad())?),
                 "spp" => o.spp = Some(v.parse().map_err(|_| bad())?),
                 "integrator" => {
-                    o.integrator = Some(match v {
-                        "raycast" => IntegratorArg::Raycast,
-                        "whitted" => IntegratorArg::Whitted,
-                        _ => return Err(bad()),
-                    })
+                    o.integrator = Some(
+                        <IntegratorArg as clap::ValueEnum>::from_str(v, false)
+                            .map_err(|_| bad())?,
+                    )
                 }
                 "max_depth" => o.max_depth = Some(v.parse().map_err(|_| bad())?),
                 "seed" => o.seed = Some(v.parse().map_err(|_| bad())?),
@@ -275,7 +277,7 @@ mod tests {
             width: Some(10),
             height: None,
             spp: Some(4),
-            integrator: Some(IntegratorArg::Raycast),
+            integrator: Some(IntegratorArg::DebugCost),
             max_depth: Some(2),
             seed: Some(u64::MAX),
             accel: Some(lucent::accel::AccelKind::Octree),

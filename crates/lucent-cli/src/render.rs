@@ -8,6 +8,7 @@ use crate::output::{ImageFormat, write_density_map, write_image};
 use anyhow::{Context, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lucent::film::Film;
+use lucent::integrator::{DebugView, Integrator};
 use lucent::render::{Checkpoints, Hooks, RenderStats, Sampling, Shard, render};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -156,6 +157,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             None => format!("{} spp", settings.spp),
         };
         println!("{}", summary(&plan.output, w, h, &sampled, &rendered.stats));
+        if settings.integrator == Integrator::Debug(DebugView::Cost) {
+            println!("cost scale: {}", lucent::integrator::debug::COST_LEGEND);
+        }
         if let (Some(map), Some(a)) = (&args.density_map, adaptive) {
             write_density_map(&rendered.density, w, h, a.depth, map)
                 .with_context(|| format!("cannot write {}", map.display()))?;

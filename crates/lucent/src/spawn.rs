@@ -114,6 +114,7 @@ mod tests {
             material: 0,
             object: 0,
             surface: SurfaceId::Sphere(3),
+            bary: [0.0; 3],
             error: Vec3::ZERO,
         };
         let (out, leaving) = spawn_ray(&hit, Vec3::new(1.0, 1.0, 0.0).normalize());

@@ -15,7 +15,7 @@ use crate::paths::LoadOptions;
 use lucent::Rgb;
 use lucent::accel::AccelKind;
 use lucent::camera::Camera;
-use lucent::integrator::{Integrator, Whitted};
+use lucent::integrator::{DebugView, Integrator, Whitted};
 use lucent::render::{RenderSettings, Sampling};
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::schedule::adaptive::{Adaptive, MAX_DEPTH as ADAPTIVE_MAX_DEPTH};
@@ -287,6 +287,12 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
             max_depth,
             min_weight,
         }),
+        IntegratorName::DebugNormals => Integrator::Debug(DebugView::Normals),
+        IntegratorName::DebugDepth => Integrator::Debug(DebugView::Depth),
+        IntegratorName::DebugAlbedo => Integrator::Debug(DebugView::Albedo),
+        IntegratorName::DebugId => Integrator::Debug(DebugView::Id),
+        IntegratorName::DebugBarycentrics => Integrator::Debug(DebugView::Barycentrics),
+        IntegratorName::DebugCost => Integrator::Debug(DebugView::Cost),
     };
     let sampling = sampling(r, source)?;
     Ok(RenderSettings {

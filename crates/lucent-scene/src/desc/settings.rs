@@ -54,6 +54,24 @@ pub enum IntegratorName {
     /// Whitted ray tracing.
     #[default]
     Whitted,
+    /// Debug view: shading normals.
+    #[serde(rename = "debug:normals")]
+    DebugNormals,
+    /// Debug view: distance.
+    #[serde(rename = "debug:depth")]
+    DebugDepth,
+    /// Debug view: diffuse colour.
+    #[serde(rename = "debug:albedo")]
+    DebugAlbedo,
+    /// Debug view: object ids.
+    #[serde(rename = "debug:id")]
+    DebugId,
+    /// Debug view: barycentric weights.
+    #[serde(rename = "debug:barycentrics")]
+    DebugBarycentrics,
+    /// Debug view: accelerator cost per ray.
+    #[serde(rename = "debug:cost")]
+    DebugCost,
 }
 
 /// The ray–triangle tests a scene file can name.

@@ -5,9 +5,11 @@
 //! traces into `stats`. It knows nothing of pixels or threads. To add one: a file with its
 //! settings struct and `radiance`, a variant here, and its name in [`Integrator::name`].
 
+pub mod debug;
 pub mod raycast;
 pub mod whitted;
 
+pub use debug::DebugView;
 pub use whitted::Whitted;
 
 use crate::Rgb;
@@ -56,6 +58,8 @@ pub enum Integrator {
     Raycast,
     /// Whitted's recursive ray tracing: local shading, shadows, reflection and refraction.
     Whitted(Whitted),
+    /// A debug view of what the camera ray finds.
+    Debug(DebugView),
 }
 
 impl Default for Integrator {
@@ -70,6 +74,12 @@ impl Integrator {
         match self {
             Integrator::Raycast => "raycast",
             Integrator::Whitted(_) => "whitted",
+            Integrator::Debug(DebugView::Normals) => "debug:normals",
+            Integrator::Debug(DebugView::Depth) => "debug:depth",
+            Integrator::Debug(DebugView::Albedo) => "debug:albedo",
+            Integrator::Debug(DebugView::Id) => "debug:id",
+            Integrator::Debug(DebugView::Barycentrics) => "debug:barycentrics",
+            Integrator::Debug(DebugView::Cost) => "debug:cost",
         }
     }
 
@@ -79,6 +89,7 @@ impl Integrator {
         match self {
             Integrator::Raycast => raycast::radiance(scene, ray, stats),
             Integrator::Whitted(w) => w.radiance(scene, ray, stats),
+            Integrator::Debug(view) => debug::radiance(*view, scene, ray, stats),
         }
     }
 }

@@ -201,6 +201,7 @@ impl Scene {
                     material: tag.material,
                     object: tag.object,
                     surface: SurfaceId::Plane(i),
+                    bary: [0.0; 3],
                     error: gamma(6) * (point.abs() + plane.point.abs()),
                 }
             }
@@ -219,6 +220,7 @@ impl Scene {
                     material: tag.material,
                     object: tag.object,
                     surface: SurfaceId::Sphere(i),
+                    bary: [0.0; 3],
                     error: gamma(6) * (sphere.center.abs() + (point - sphere.center).abs()),
                 }
             }
@@ -285,6 +287,7 @@ impl Scene {
                         instance: k,
                         index: tri,
                     },
+                    bary: hit.bary,
                     error,
                 }
             }

@@ -55,6 +55,9 @@ pub struct SurfaceHit {
     /// Which surface was hit: a ray leaving it is not tested against it again (see
     /// [`crate::spawn`]).
     pub surface: SurfaceId,
+    /// A triangle's barycentric weights of its corners A, B, C at the hit; zero for other
+    /// shapes.
+    pub bary: [f32; 3],
     /// A bound on the absolute rounding error of `point`, per axis.
     pub error: Vec3,
 }
