@@ -20,6 +20,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Print what a scene holds: objects, triangles, lights, materials, bounds and memory.
     Info(InfoArgs),
+    /// Print the ray tree of one pixel (Whitted): every ray, what it hit, its contribution.
+    Explain(ExplainArgs),
     /// Combine the partial films of a sharded render into one image.
     Merge(MergeArgs),
     /// Write any scene lucent reads (OBJ, PLY, glTF, Mitsuba XML) as lucent's TOML.
@@ -198,6 +200,32 @@ pub struct ConvertArgs {
     /// Refuse files named by the scene outside its folder.
     #[arg(long)]
     pub sandbox: bool,
+}
+
+/// `lucent explain`.
+#[derive(Debug, Args)]
+pub struct ExplainArgs {
+    /// Scene file; the built-in default scene when omitted.
+    pub scene: Option<PathBuf>,
+    /// The pixel, as X,Y (column and row from the top left, from 0).
+    #[arg(long, value_name = "X,Y", value_parser = pixel)]
+    pub pixel: (u32, u32),
+    /// Also draw the tree as an SVG diagram here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub svg: Option<PathBuf>,
+    /// Settings that override the scene file's.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `X,Y` pixel coordinates.
+fn pixel(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("expected X,Y such as 400,300, got `{s}`");
+    let (x, y) = s.split_once(',').ok_or_else(bad)?;
+    Ok((
+        x.trim().parse().map_err(|_| bad())?,
+        y.trim().parse().map_err(|_| bad())?,
+    ))
 }
 
 /// `lucent info`.

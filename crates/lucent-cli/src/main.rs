@@ -3,6 +3,7 @@
 mod bench;
 mod cli;
 mod convert;
+mod explain;
 mod film_file;
 mod info;
 mod job;
@@ -22,6 +23,7 @@ fn main() -> ExitCode {
     let result = match args.command {
         cli::Command::Render(a) => render::run(&a),
         cli::Command::Info(a) => info::run(&a),
+        cli::Command::Explain(a) => explain::run(&a),
         cli::Command::Merge(a) => merge::run(&a),
         cli::Command::Convert(a) => convert::run(&a),
         cli::Command::Bench(a) => bench::run(&a),

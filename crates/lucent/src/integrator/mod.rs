@@ -7,6 +7,7 @@
 
 pub mod debug;
 pub mod raycast;
+pub mod record;
 pub mod whitted;
 
 pub use debug::DebugView;

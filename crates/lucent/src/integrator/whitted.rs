@@ -26,6 +26,7 @@
 //!   [`MAX_SECONDARY_RAYS`] per camera ray.
 
 use super::RayStats;
+use super::record::{Cut, NoRecord, RayKind, Recorder};
 use crate::Rgb;
 use crate::optics::{reflect, refract};
 use crate::scene::Scene;
@@ -65,47 +66,74 @@ struct Path {
     weight: Rgb,
 }
 
+/// What one trace carries besides the ray: the scene, the budget, the counters and the
+/// recorder of the ray tree.
+struct Trace<'a, R> {
+    scene: &'a Scene,
+    budget: u32,
+    stats: &'a mut RayStats,
+    record: &'a mut R,
+}
+
 impl Whitted {
     /// Radiance along a camera ray.
     pub fn radiance(&self, scene: &Scene, ray: &Ray, stats: &mut RayStats) -> Rgb {
-        let mut budget = MAX_SECONDARY_RAYS;
-        self.trace(
-            scene,
-            ray,
-            None,
-            &Path {
-                depth: 0,
-                weight: Rgb::WHITE,
-            },
-            &mut budget,
-            stats,
-        )
+        self.radiance_recorded(scene, ray, stats, &mut NoRecord)
     }
 
-    fn trace(
+    /// [`Whitted::radiance`], telling `record` every ray traced and every term added (for
+    /// `lucent explain`; [`NoRecord`] costs nothing).
+    pub fn radiance_recorded<R: Recorder>(
         &self,
         scene: &Scene,
+        ray: &Ray,
+        stats: &mut RayStats,
+        record: &mut R,
+    ) -> Rgb {
+        let mut t = Trace {
+            scene,
+            budget: MAX_SECONDARY_RAYS,
+            stats,
+            record,
+        };
+        let path = Path {
+            depth: 0,
+            weight: Rgb::WHITE,
+        };
+        self.trace(&mut t, RayKind::Camera, ray, None, &path)
+    }
+
+    fn trace<R: Recorder>(
+        &self,
+        t: &mut Trace<R>,
+        kind: RayKind,
         ray: &Ray,
         from: Option<Leaving>,
         path: &Path,
-        budget: &mut u32,
-        stats: &mut RayStats,
     ) -> Rgb {
-        match scene.intersect_from(ray, from, &mut stats.traversal) {
-            Some(hit) => self.shade(scene, ray, &hit, path, budget, stats),
-            None => scene.background_along(ray.dir),
-        }
+        t.record.begin(kind, ray, path.weight);
+        let hit = t.scene.intersect_from(ray, from, &mut t.stats.traversal);
+        t.record.hit(hit.as_ref());
+        let color = match hit {
+            Some(hit) => self.shade(t, ray, &hit, path),
+            None => {
+                let background = t.scene.background_along(ray.dir);
+                t.record.local(background);
+                background
+            }
+        };
+        t.record.end(color);
+        color
     }
 
-    fn shade(
+    fn shade<R: Recorder>(
         &self,
-        scene: &Scene,
+        t: &mut Trace<R>,
         ray: &Ray,
         hit: &SurfaceHit,
         path: &Path,
-        budget: &mut u32,
-        stats: &mut RayStats,
     ) -> Rgb {
+        let scene = t.scene;
         let m = &scene.materials[hit.material as usize];
         let i = ray.dir;
         let entering = hit.normal.dot(i) < 0.0;
@@ -124,7 +152,7 @@ impl Whitted {
         if entering {
             color += m.ke;
         }
-        for light in &scene.lights {
+        for (j, light) in scene.lights.iter().enumerate() {
             let Some(l) = light.illuminate(hit.point) else {
                 continue;
             };
@@ -132,16 +160,24 @@ impl Whitted {
             if n_dot_l <= 0.0 || ng.dot(l.to_light) <= 0.0 {
                 continue;
             }
-            let s = self.shadow(scene, hit, l.to_light, l.distance, stats);
+            let s = self.shadow(scene, hit, l.to_light, l.distance, t.stats);
             if s.is_black() {
+                t.record.light(j, s, Rgb::BLACK);
                 continue;
             }
             let r = reflect(-l.to_light, n);
             let specular = m.ks * r.dot(v).max(0.0).powf(m.shininess);
-            color += s * l.intensity * (kd * n_dot_l + specular);
+            let term = s * l.intensity * (kd * n_dot_l + specular);
+            t.record.light(j, s, term);
+            color += term;
         }
+        t.record.local(color);
 
+        let wanted = !m.kr.is_black() || !m.kt.is_black();
         if path.depth >= self.max_depth {
+            if wanted {
+                t.record.cut(Cut::Depth);
+            }
             return color;
         }
         let mut kr = m.kr;
@@ -150,35 +186,51 @@ impl Whitted {
             // A bent normal may send the ray to the wrong side: then bend by the face's.
             let bent = refract(i, n, mu).filter(|t| t.dot(ng) < 0.0);
             match bent.or_else(|| refract(i, ng, mu)) {
-                Some(t) => {
-                    if let Some(child) = self.child(path, m.kt, budget) {
-                        stats.refracted += 1;
-                        let (ray, from) = spawn_ray(hit, t.normalize());
-                        color += m.kt * self.trace(scene, &ray, Some(from), &child, budget, stats);
+                Some(dir) => {
+                    if let Some(child) = self.child(t, RayKind::Refracted, path, m.kt) {
+                        t.stats.refracted += 1;
+                        let (ray, from) = spawn_ray(hit, dir.normalize());
+                        let it = self.trace(t, RayKind::Refracted, &ray, Some(from), &child);
+                        color += m.kt * it;
                     }
                 }
                 // Total internal reflection: the transmitted share is reflected.
-                None => kr += m.kt,
+                None => {
+                    t.record.cut(Cut::TotalInternalReflection);
+                    kr += m.kt;
+                }
             }
         }
         if !kr.is_black()
-            && let Some(child) = self.child(path, kr, budget)
+            && let Some(child) = self.child(t, RayKind::Reflected, path, kr)
         {
-            stats.reflected += 1;
+            t.stats.reflected += 1;
             let r = Some(reflect(i, n)).filter(|r| r.dot(ng) > 0.0);
             let (ray, from) = spawn_ray(hit, r.unwrap_or_else(|| reflect(i, ng)).normalize());
-            color += kr * self.trace(scene, &ray, Some(from), &child, budget, stats);
+            color += kr * self.trace(t, RayKind::Reflected, &ray, Some(from), &child);
         }
         color
     }
 
-    /// The path of a secondary ray weighted by `k`, if it is worth tracing and the budget allows.
-    fn child(&self, path: &Path, k: Rgb, budget: &mut u32) -> Option<Path> {
+    /// The path of a secondary ray weighted by `k`, if it is worth tracing and the budget
+    /// allows (a ray cut is told to the recorder).
+    fn child<R: Recorder>(
+        &self,
+        t: &mut Trace<R>,
+        kind: RayKind,
+        path: &Path,
+        k: Rgb,
+    ) -> Option<Path> {
         let weight = path.weight * k;
-        if weight.max_channel() < self.min_weight || *budget == 0 {
+        if weight.max_channel() < self.min_weight {
+            t.record.cut(Cut::Weight(kind, weight));
             return None;
         }
-        *budget -= 1;
+        if t.budget == 0 {
+            t.record.cut(Cut::Budget(kind));
+            return None;
+        }
+        t.budget -= 1;
         Some(Path {
             depth: path.depth + 1,
             weight,
