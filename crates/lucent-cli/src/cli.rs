@@ -119,6 +119,9 @@ pub struct Overrides {
     /// from untrusted sources.
     #[arg(long)]
     pub sandbox: bool,
+    /// Whitted without shadow rays: every light reaches every point that faces it.
+    #[arg(long)]
+    pub no_shadows: bool,
     /// Anti-aliasing: `uniform` (--spp samples per pixel), `adaptive` (Whitted's corners) or
     /// `quadtree` (corners of blocks of pixels first).
     #[arg(long, value_enum)]

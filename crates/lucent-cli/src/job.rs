@@ -138,6 +138,9 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
     if aa == SamplingName::Adaptive && o.aa_block.is_some() {
         bail!("--aa-block needs --aa quadtree");
     }
+    if o.no_shadows {
+        d.render.shadows = false;
+    }
     if let Some(t) = o.aa_threshold {
         d.render.aa_threshold = Some(from_flag(Finite(t)));
     }
@@ -207,6 +210,7 @@ impl Overrides {
             self.triangle_test.map(|v| format!("{v:?}").to_lowercase()),
         );
         put("sandbox", self.sandbox.then(|| "true".to_string()));
+        put("no_shadows", self.no_shadows.then(|| "true".to_string()));
         put("aa", self.aa.map(|v| format!("{v:?}").to_lowercase()));
         // Bit patterns: the threshold comes back exactly.
         put(
@@ -247,6 +251,7 @@ impl Overrides {
                     })
                 }
                 "sandbox" => o.sandbox = v == "true",
+                "no_shadows" => o.no_shadows = v == "true",
                 "aa" => {
                     o.aa = Some(match v {
                         "uniform" => AaArg::Uniform,
@@ -283,6 +288,7 @@ mod tests {
             accel: Some(lucent::accel::AccelKind::Octree),
             triangle_test: Some(TriangleTestArg::Projection),
             sandbox: true,
+            no_shadows: true,
             aa: Some(AaArg::Quadtree),
             aa_threshold: Some(0.1),
             aa_depth: Some(4),

@@ -96,6 +96,9 @@ fn a_point_in_shadow_gets_ambient_only() {
     let specular = 0.5 * v.y.powi(10); // R = L = +y mirrored about +y
     let want = |ia: f32| 0.5 * ia + 0.8 + specular;
     assert_close(lit.center(), [want(0.2), want(0.3), want(0.4)], 1e-4);
+    // Without shadow rays the ball casts no shadow: the point is lit as if it were not there.
+    let unshadowed = render_scene(scene, &["--no-shadows"]);
+    assert_close(unshadowed.center(), lit.center(), 1e-6);
 }
 
 /// A mirror of kr 0.5 shows half the colour of what it reflects.

@@ -286,6 +286,7 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         IntegratorName::Whitted => Integrator::Whitted(Whitted {
             max_depth,
             min_weight,
+            shadows: r.shadows,
         }),
         IntegratorName::DebugNormals => Integrator::Debug(DebugView::Normals),
         IntegratorName::DebugDepth => Integrator::Debug(DebugView::Depth),

@@ -114,6 +114,8 @@ pub struct RenderDesc {
     pub accelerator: Spanned<String>,
     /// `"watertight"` (default) or `"projection"`.
     pub triangle_test: TriangleTestName,
+    /// Whitted: trace shadow rays (default true).
+    pub shadows: bool,
     /// `"uniform"` (default), `"adaptive"` or `"quadtree"`.
     pub aa: SamplingName,
     /// Adaptive and quadtree: the corners' difference that splits (default 0.1).
@@ -136,6 +138,7 @@ impl Default for RenderDesc {
             seed: 0,
             accelerator: Spanned::new(0..0, lucent::accel::AccelKind::default().name().to_string()),
             triangle_test: TriangleTestName::default(),
+            shadows: true,
             aa: SamplingName::default(),
             aa_threshold: None,
             aa_depth: None,

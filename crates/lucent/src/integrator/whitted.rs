@@ -48,6 +48,9 @@ pub struct Whitted {
     pub max_depth: u32,
     /// Secondary rays whose weight's largest channel falls below this are not traced.
     pub min_weight: f32,
+    /// Shadow rays are traced; without them every light reaches every point facing it
+    /// (`S_j = 1`), as in the lecture's picture of shading without shadows.
+    pub shadows: bool,
 }
 
 impl Default for Whitted {
@@ -55,6 +58,7 @@ impl Default for Whitted {
         Self {
             max_depth: 10,
             min_weight: 1.0 / 256.0,
+            shadows: true,
         }
     }
 }
@@ -160,7 +164,11 @@ impl Whitted {
             if n_dot_l <= 0.0 || ng.dot(l.to_light) <= 0.0 {
                 continue;
             }
-            let s = self.shadow(scene, hit, l.to_light, l.distance, t.stats);
+            let s = if self.shadows {
+                self.shadow(scene, hit, l.to_light, l.distance, t.stats)
+            } else {
+                Rgb::WHITE
+            };
             if s.is_black() {
                 t.record.light(j, s, Rgb::BLACK);
                 continue;
