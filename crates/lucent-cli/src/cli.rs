@@ -22,6 +22,8 @@ pub enum Command {
     Info(InfoArgs),
     /// Print the ray tree of one pixel (Whitted): every ray, what it hit, its contribution.
     Explain(ExplainArgs),
+    /// Render the lecture's concepts, one image each, with the commands that made them.
+    Gallery(GalleryArgs),
     /// Combine the partial films of a sharded render into one image.
     Merge(MergeArgs),
     /// Write any scene lucent reads (OBJ, PLY, glTF, Mitsuba XML) as lucent's TOML.
@@ -203,6 +205,19 @@ pub struct ConvertArgs {
     /// Refuse files named by the scene outside its folder.
     #[arg(long)]
     pub sandbox: bool,
+}
+
+/// `lucent gallery`.
+#[derive(Debug, Args)]
+pub struct GalleryArgs {
+    /// The folder to write the images, their scenes and gallery.md into.
+    pub output: PathBuf,
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 600, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub height: u32,
 }
 
 /// `lucent explain`.

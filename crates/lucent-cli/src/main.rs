@@ -5,6 +5,7 @@ mod cli;
 mod convert;
 mod explain;
 mod film_file;
+mod gallery;
 mod info;
 mod job;
 mod merge;
@@ -24,6 +25,7 @@ fn main() -> ExitCode {
         cli::Command::Render(a) => render::run(&a),
         cli::Command::Info(a) => info::run(&a),
         cli::Command::Explain(a) => explain::run(&a),
+        cli::Command::Gallery(a) => gallery::run(&a),
         cli::Command::Merge(a) => merge::run(&a),
         cli::Command::Convert(a) => convert::run(&a),
         cli::Command::Bench(a) => bench::run(&a),
