@@ -57,6 +57,10 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
     );
     let a = scene.accel_report();
     println!(
+        "loaded in:   {:.1} ms (files read and scene built, accelerators included)",
+        job.load_time.as_secs_f64() * 1e3
+    );
+    println!(
         "accelerator: {}, built in {:.1} ms: {} nodes, depth {}, {:.2} MB ({:.1} bytes per primitive)",
         a.kind,
         a.build_time.as_secs_f64() * 1e3,

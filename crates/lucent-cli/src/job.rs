@@ -18,11 +18,14 @@ pub struct Job {
     pub overrides: Overrides,
     /// The built scene and its render settings.
     pub loaded: Loaded,
+    /// Wall time of reading and building the scene (accelerators included).
+    pub load_time: std::time::Duration,
 }
 
 impl Job {
     /// Reads and builds the scene at `scene` (or the built-in one) with `overrides` applied.
     pub fn load(scene: Option<&Path>, overrides: &Overrides) -> anyhow::Result<Self> {
+        let start = std::time::Instant::now();
         let options = LoadOptions {
             sandbox: overrides.sandbox,
         };
@@ -39,6 +42,7 @@ impl Job {
             scene_path: scene.map(Path::to_path_buf),
             overrides: overrides.clone(),
             loaded,
+            load_time: start.elapsed(),
         })
     }
 
