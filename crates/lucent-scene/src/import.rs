@@ -116,11 +116,14 @@ pub fn import_obj(
     path: &Path,
     options: &LoadOptions,
     inputs: &mut Fingerprint,
+    files: &mut crate::mesh_file::MeshFiles,
 ) -> Result<Imported, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     inputs.add(&bytes);
-    let obj = crate::obj::parse_obj(&bytes, path)?;
+    let obj = std::sync::Arc::new(crate::obj::parse_obj(&bytes, path)?);
+    // The build takes its parts from this parse rather than reading the file again.
+    files.keep_obj(path, obj.clone());
     let folder = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
     let mut warnings = Vec::new();
     // Every material of every library, with the library's folder (relative to the OBJ's).

@@ -53,6 +53,8 @@ pub struct SceneFile {
     pub options: LoadOptions,
     /// Fingerprint of the files read while importing.
     imported: u64,
+    /// Mesh files the import already parsed, for the build.
+    preloaded: mesh_file::MeshFiles,
 }
 
 /// The scene formats lucent reads, by extension.
@@ -72,9 +74,15 @@ impl SceneFile {
             return Err(LoadError::file(path, "no such scene file"));
         }
         let mut inputs = hash::Fingerprint::default();
+        let mut preloaded = mesh_file::MeshFiles::default();
         let imported = match ext.as_deref() {
             Some("toml") | None => None,
-            Some("obj") => Some(import::import_obj(path, options, &mut inputs)?),
+            Some("obj") => Some(import::import_obj(
+                path,
+                options,
+                &mut inputs,
+                &mut preloaded,
+            )?),
             Some("ply") => Some(import::import_ply(path)),
             Some("gltf" | "glb") => Some(gltf_file::import_gltf(path, options, &mut inputs)?),
             Some("xml") => Some(mitsuba::import_mitsuba(path, options, &mut inputs)?),
@@ -114,6 +122,7 @@ impl SceneFile {
             warnings: imported.warnings,
             options: *options,
             imported: inputs.value(),
+            preloaded,
         })
     }
 
@@ -155,6 +164,7 @@ impl SceneFile {
             warnings: Vec::new(),
             options: LoadOptions::default(),
             imported: 0,
+            preloaded: mesh_file::MeshFiles::default(),
         })
     }
 
@@ -165,7 +175,13 @@ impl SceneFile {
             path: &self.path,
             text: &self.text,
         };
-        let mut loaded = build::build_with(&self.desc, &source, &self.base_dir, &self.options)?;
+        let mut loaded = build::build_with_files(
+            &self.desc,
+            &source,
+            &self.base_dir,
+            &self.options,
+            self.preloaded.clone(),
+        )?;
         if !self.camera_given {
             let c = self.framing_camera(&loaded);
             loaded.scene.camera = lucent::camera::Camera::new(

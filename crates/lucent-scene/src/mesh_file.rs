@@ -51,13 +51,28 @@ pub fn read_mesh_part(
 
 /// Mesh files read so far: an OBJ file split into parts by material, or a glTF file of many
 /// primitives, is read once, not once per part.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct MeshFiles {
     obj: HashMap<PathBuf, Arc<ObjFile>>,
     gltf: HashMap<PathBuf, Arc<GltfFile>>,
 }
 
+impl std::fmt::Debug for MeshFiles {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MeshFiles")
+            .field("obj", &self.obj.keys().collect::<Vec<_>>())
+            .field("gltf", &self.gltf.keys().collect::<Vec<_>>())
+            .finish()
+    }
+}
+
 impl MeshFiles {
+    /// Keeps `obj`, parsed from the file at `path`, for the build to use instead of reading
+    /// the file again.
+    pub fn keep_obj(&mut self, path: &Path, obj: Arc<ObjFile>) {
+        self.obj.insert(path.to_path_buf(), obj);
+    }
+
     /// As [`read_mesh_part`], reusing OBJ files already parsed (their bytes are added to the
     /// fingerprint the first time only).
     pub fn read_part(

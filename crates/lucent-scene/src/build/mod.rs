@@ -11,6 +11,7 @@ use crate::desc::settings::{RenderDesc, SamplingName, TriangleTestName};
 use crate::desc::{IntegratorName, SceneDesc};
 use crate::error::{LoadError, Source};
 use crate::hash::Fingerprint;
+use crate::mesh_file::MeshFiles;
 use crate::paths::LoadOptions;
 use lucent::Rgb;
 use lucent::accel::AccelKind;
@@ -127,6 +128,17 @@ pub fn build_with(
     base_dir: &Path,
     options: &LoadOptions,
 ) -> Result<Loaded, LoadError> {
+    build_with_files(desc, source, base_dir, options, MeshFiles::default())
+}
+
+/// [`build_with`], taking meshes from `files` (already parsed) before reading their files.
+pub fn build_with_files(
+    desc: &SceneDesc,
+    source: &Source,
+    base_dir: &Path,
+    options: &LoadOptions,
+    files: MeshFiles,
+) -> Result<Loaded, LoadError> {
     let settings = render_settings(desc, source)?;
     let cam = desc.camera.get_ref();
     let (width, height) = (*desc.image.width.get_ref(), *desc.image.height.get_ref());
@@ -149,7 +161,7 @@ pub fn build_with(
         inputs: Fingerprint::default(),
         warnings: Vec::new(),
         builder,
-        mesh_files: Default::default(),
+        mesh_files: files,
         images: HashMap::new(),
         image_means: Vec::new(),
     };
