@@ -27,7 +27,7 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
         );
     };
     if s.sampling != Sampling::Uniform {
-        bail!("lucent explain follows uniform samples; drop --aa (or set aa = \"uniform\")");
+        bail!("lucent explain follows uniform samples; add --aa uniform");
     }
     let (w, h) = (scene.camera.width(), scene.camera.height());
     let (x, y) = args.pixel;

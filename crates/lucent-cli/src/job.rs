@@ -131,6 +131,14 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
             AaArg::Adaptive => SamplingName::Adaptive,
             AaArg::Quadtree => SamplingName::Quadtree,
         };
+        // The file's settings of another sampling no longer apply.
+        let r = &mut d.render;
+        if r.aa == SamplingName::Uniform {
+            (r.aa_threshold, r.aa_depth) = (None, None);
+        }
+        if r.aa != SamplingName::Quadtree {
+            r.aa_block = None;
+        }
     }
     // Checked here, so that the errors name the flags rather than the file.
     let aa = d.render.aa;

@@ -153,3 +153,20 @@ fn adaptive_matches_sixteen_samples_with_fewer_rays() {
     let (plain, _) = render(&["--spp", "4", "--seed", "9"], "u4.pfm");
     assert!(rmse(&plain, &reference) > 2.0 * e_adaptive);
 }
+
+#[test]
+fn the_aa_flag_overrides_a_scene_files_sampling() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[image]\nwidth = 16\nheight = 12\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n\
+                 [render]\naa = \"quadtree\"\naa_block = 2\naa_threshold = 0.05\n";
+    std::fs::write(dir.path().join("s.toml"), scene).unwrap();
+    for aa in ["uniform", "adaptive", "quadtree"] {
+        let output = run(dir.path(), &["render", "s.toml", "--aa", aa, "-o", "x.png"]);
+        assert_success(&output);
+    }
+    let output = run(
+        dir.path(),
+        &["explain", "s.toml", "--pixel", "1,1", "--aa", "uniform"],
+    );
+    assert_success(&output);
+}

@@ -3,7 +3,7 @@
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
 use lucent::Rgb;
-use lucent::film::tonemap::srgb8_to_linear;
+use lucent::film::tonemap::{srgb_to_linear, srgb8_to_linear};
 use lucent::texture::ImageTexture;
 use std::path::Path;
 
@@ -11,6 +11,9 @@ use std::path::Path;
 pub const MAX_IMAGE_SIDE: u32 = 32_768;
 /// Most bytes the decoder may allocate for one image.
 const MAX_DECODE_BYTES: u64 = 1 << 30;
+/// Most texels of one image (an 8192 × 4096 environment map): checked from the header before
+/// decoding, since the texels end as 12-byte float triples.
+pub const MAX_TEXELS: u64 = 1 << 25;
 
 /// Reads the image at `path`: 8-bit and 16-bit images are taken as sRGB-encoded, float images
 /// (EXR, HDR) as linear. Its bytes are added to `inputs`.
@@ -18,6 +21,17 @@ pub fn read_image(path: &Path, inputs: &mut Fingerprint) -> Result<ImageTexture,
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
     inputs.add(&bytes);
+    let (w, h) = image::ImageReader::new(std::io::Cursor::new(&bytes))
+        .with_guessed_format()
+        .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?
+        .into_dimensions()
+        .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
+    if u64::from(w) * u64::from(h) > MAX_TEXELS {
+        return Err(LoadError::file(
+            path,
+            format!("the image is {w}×{h}: more than the {MAX_TEXELS} texels lucent reads"),
+        ));
+    }
     let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
         .with_guessed_format()
         .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
@@ -47,14 +61,7 @@ pub fn read_image(path: &Path, inputs: &mut Fingerprint) -> Result<ImageTexture,
             | image::ColorType::Rgb16
             | image::ColorType::Rgba16
     ) {
-        let decode = |v: u16| {
-            let e = f32::from(v) / 65535.0;
-            if e <= 0.040_45 {
-                e / 12.92
-            } else {
-                ((e + 0.055) / 1.055).powf(2.4)
-            }
-        };
+        let decode = |v: u16| srgb_to_linear(f32::from(v) / 65535.0);
         decoded
             .into_rgb16()
             .pixels()

@@ -41,6 +41,7 @@ pub struct MtlMaterial {
 
 /// Parses MTL text; `path` names it in errors.
 pub fn parse_mtl(bytes: &[u8], path: &Path) -> Result<Vec<MtlMaterial>, LoadError> {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let text = String::from_utf8_lossy(bytes);
     let mut out: Vec<MtlMaterial> = Vec::new();
     for (n, raw) in text.lines().enumerate() {

@@ -12,6 +12,7 @@ use glam::{Vec2, Vec3};
 use lucent::Rgb;
 use lucent::film::tonemap::srgb_to_linear;
 use lucent::shape::Mesh;
+use std::collections::HashMap;
 use std::path::Path;
 
 /// No texture coordinate or normal at a corner.
@@ -101,20 +102,37 @@ impl ObjFile {
         };
         // Found through the position's chain of corners: faster than hashing, and a
         // position rarely has more than two texture/normal combinations.
+        // A chain that grows long (a hostile file: one position with thousands of texture
+        // coordinates) hands over to a hash map, so the work stays linear.
+        const LONG_CHAIN: u32 = 16;
         let mut first = vec![NONE; self.positions.len()];
         let mut next: Vec<u32> = Vec::new();
+        let mut long: HashMap<Corner, u32> = HashMap::new();
         let mut corners: Vec<Corner> = Vec::new();
         let mut triangles = Vec::with_capacity(count);
         for t in selected {
             triangles.push(t.map(|c| {
                 let k = key(&c);
                 let mut i = first[k[0] as usize];
-                while i != NONE && corners[i as usize] != k {
+                let mut steps = 0;
+                while i != NONE && corners[i as usize] != k && steps < LONG_CHAIN {
                     i = next[i as usize];
+                    steps += 1;
                 }
-                if i == NONE {
-                    i = corners.len() as u32;
-                    corners.push(k);
+                if i != NONE && corners[i as usize] == k {
+                    return i;
+                }
+                if steps == LONG_CHAIN
+                    && let Some(&found) = long.get(&k)
+                {
+                    return found;
+                }
+                let i = corners.len() as u32;
+                corners.push(k);
+                if steps == LONG_CHAIN {
+                    long.insert(k, i);
+                    next.push(NONE);
+                } else {
                     next.push(first[k[0] as usize]);
                     first[k[0] as usize] = i;
                 }
@@ -249,6 +267,8 @@ fn resolve(
 /// Parses OBJ bytes (UTF-8 or any ASCII-compatible encoding); `path` names it in errors.
 pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<ObjFile, LoadError> {
     // Valid UTF-8 is checked by the fast path; anything else is read as lossy text.
+    // A byte-order mark (as some Windows tools write) is not part of the first statement.
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let text = match std::str::from_utf8(bytes) {
         Ok(t) => std::borrow::Cow::Borrowed(t),
         Err(_) => String::from_utf8_lossy(bytes),
@@ -466,6 +486,34 @@ mod tests {
         // Without normals on every corner, none are kept.
         let mixed = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3\n").unwrap();
         assert!(mixed.mesh(None).unwrap().normals.is_empty());
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_read_past() {
+        let obj = parse("\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert_eq!(obj.positions.len(), 3);
+        assert_eq!(obj.triangle_count(), 1);
+    }
+
+    #[test]
+    fn many_corners_at_one_position_stay_linear() {
+        // Three positions, each with 50,000 texture coordinates: the corner chains hand over
+        // to a map instead of growing to 50,000 links (which would take 10^9 steps).
+        let n = 50_000;
+        let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        for k in 0..n {
+            text.push_str(&format!("vt {} 0\n", k as f32 / n as f32));
+        }
+        for k in 1..=n {
+            text.push_str(&format!("f 1/{k} 2/{k} 3/{k}\n"));
+        }
+        let start = std::time::Instant::now();
+        let m = parse(&text).unwrap().mesh(None).unwrap();
+        assert_eq!(m.positions.len(), 3 * n);
+        assert_eq!(m.triangles.len(), n);
+        // Every corner of a face is its own vertex, in order.
+        assert_eq!(m.triangles[7], [21, 22, 23]);
+        assert!(start.elapsed().as_secs() < 20);
     }
 
     #[test]

@@ -323,3 +323,48 @@ fn sampling_settings_belong_to_their_sampling() {
         })
     );
 }
+
+/// CRC-32 (as PNG chunks use it), bit by bit.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+#[test]
+fn a_huge_image_is_refused_from_its_header() {
+    // A PNG whose header claims 30000 × 30000 texels (10 GB as float triples), with no data:
+    // refused before anything is decoded.
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend_from_slice(&30_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&30_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    png.extend_from_slice(&13u32.to_be_bytes());
+    png.extend_from_slice(&ihdr);
+    png.extend_from_slice(&crc32(&ihdr).to_be_bytes());
+    for chunk in [&b"IDAT"[..], b"IEND"] {
+        png.extend_from_slice(&0u32.to_be_bytes());
+        png.extend_from_slice(chunk);
+        png.extend_from_slice(&crc32(chunk).to_be_bytes());
+    }
+    let dir = std::env::temp_dir().join(format!("lucent-scene-huge-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("huge.png"), png).unwrap();
+    let text = format!(
+        "{CAMERA}[[material]]\nname = \"m\"\nkd = {{ image = \"huge.png\" }}\n[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n"
+    );
+    let file = SceneFile::parse(dir.join("s.toml"), dir.clone(), text).unwrap();
+    let e = file.build().unwrap_err().to_string();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(e.contains("huge.png") && e.contains("30000×30000"), "{e}");
+}
