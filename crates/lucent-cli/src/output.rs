@@ -81,7 +81,8 @@ pub fn write_atomically(
     result
 }
 
-/// Temporary files being written, for [`remove_temporaries`].
+/// Temporary files being written, for [`remove_temporaries`]. Global because the Ctrl-C
+/// handler, which runs on its own thread with nothing passed in, must find them.
 static TEMPORARIES: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
 
 fn lock_temporaries() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {

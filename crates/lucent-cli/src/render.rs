@@ -43,6 +43,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         Sampling::Uniform => None,
     };
     if let Some(map) = &args.density_map {
+        if args.resume.is_some() || plan.shard.count > 1 {
+            bail!(
+                "--density-map needs the whole render in one run: a resumed or sharded render knows only its own pixels"
+            );
+        }
         if adaptive.is_none() {
             bail!(
                 "--density-map shows where adaptive sampling went: add --aa adaptive or --aa quadtree"

@@ -48,7 +48,9 @@
 //!
 //! Safety: every URI naming a file goes through [`crate::paths::resolve`], so `--sandbox`
 //! holds; the glTF crate never opens a file by itself. Every length and index in the file is
-//! checked against the bytes really there before anything is allocated, and the triangles of a whole scene are capped at 2^28.
+//! checked against the bytes really there before anything is allocated; an accessor without a
+//! buffer view is capped at 2^20 elements, and a merged mesh (a whole scene as one part) at
+//! 2^28 triangles.
 
 mod accessor;
 mod material;

@@ -20,8 +20,8 @@ pub struct MeshKey {
     flipped: bool,
 }
 
-/// Meshes already stored, with their local surface (for area lights).
-pub type MeshCache = HashMap<MeshKey, (u32, std::sync::Arc<Mesh>)>;
+/// Meshes already stored: their id in the scene builder.
+pub type MeshCache = HashMap<MeshKey, u32>;
 
 /// Adds the object; returns its surface when `emissive`.
 pub fn add_object(
@@ -161,8 +161,8 @@ pub fn add_object(
                 }
             };
             // A mesh placed many times is read and stored once: the objects are instances of it.
-            let (id, mesh) = match meshes.get(&key) {
-                Some(entry) => entry.clone(),
+            let id = match meshes.get(&key) {
+                Some(&id) => id,
                 None => {
                     let mut mesh = match d.kind {
                         ObjectKind::Rectangle => shapes::rectangle(),
@@ -181,14 +181,15 @@ pub fn add_object(
                     if flipped {
                         mesh.flip();
                     }
-                    let mesh = std::sync::Arc::new(mesh);
-                    let id = ctx.builder.add_mesh((*mesh).clone());
-                    meshes.insert(key, (id, mesh.clone()));
-                    (id, mesh)
+                    let id = ctx.builder.add_mesh(mesh);
+                    meshes.insert(key, id);
+                    id
                 }
             };
             ctx.builder.instance(id, transform, material);
-            Ok(emissive.then(|| surface(&mesh, transform)))
+            Ok(emissive
+                .then(|| ctx.builder.stored_mesh(id).map(|m| surface(m, transform)))
+                .flatten())
         }
     }
 }

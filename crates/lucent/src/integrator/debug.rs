@@ -3,7 +3,8 @@
 //! Each view traces the camera ray only (no lights, no secondary rays):
 //! - `normals`: the unit shading normal `n` as `(n + 1) / 2` (facing the camera: pale blue);
 //! - `depth`: the distance to the hit, from the nearest point of the scene's bounds (black) to
-//!   their farthest corner (white), seen from the ray's origin; beyond, and misses, white;
+//!   their farthest corner (white), seen from the ray's origin; beyond, and misses, white (a
+//!   scene of planes alone, without finite bounds: `1 − e^(−t/10)`);
 //! - `albedo`: the surface's diffuse colour (`kd`, its texture and vertex colour); misses black;
 //! - `id`: a colour per scene object, the same in every run;
 //! - `barycentrics`: a triangle's weights of its corners A, B, C as red, green, blue (other
@@ -118,7 +119,8 @@ pub fn radiance(view: DebugView, scene: &Scene, ray: &Ray, stats: &mut RayStats)
                 if far > near && far.is_finite() {
                     ((t - near) / (far - near)).clamp(0.0, 1.0)
                 } else {
-                    1.0
+                    // No finite bounds (only planes): 1 − e^(−t/10), grey 0.63 at 10 units.
+                    1.0 - (-t / 10.0).exp()
                 }
             });
             Rgb::gray(d)

@@ -194,6 +194,11 @@ impl SceneBuilder {
         self.meshes.len() as u32 - 1
     }
 
+    /// Stored mesh `id` (from [`SceneBuilder::add_mesh`]).
+    pub fn stored_mesh(&self, id: u32) -> Option<&Mesh> {
+        self.meshes.get(id as usize)
+    }
+
     /// Places stored mesh `mesh` by `to_world` (object to world space); returns its object id.
     pub fn instance(&mut self, mesh: u32, to_world: Affine3A, material: u32) -> u32 {
         let tag = self.next_tag(material);
