@@ -448,3 +448,28 @@ fn mitsuba_xml_converts_to_the_same_image() {
     );
     assert_converts_exactly(&scene, &[]);
 }
+
+#[test]
+fn includes_that_multiply_are_refused() {
+    // a.xml includes b.xml 100 times, b.xml includes c.xml 100 times, c.xml holds 10 KB: 100 MB
+    // of XML from 30 KB of files.
+    let dir = tempfile::tempdir().unwrap();
+    let includes = |file: &str| {
+        let lines = format!("    <include filename=\"{file}\"/>\n").repeat(100);
+        format!("<scene version=\"3.0.0\">\n{lines}</scene>\n")
+    };
+    write(dir.path(), "a.xml", includes("b.xml"));
+    write(dir.path(), "b.xml", includes("c.xml"));
+    let padding = "<!-- padding -->\n".repeat(600);
+    write(
+        dir.path(),
+        "c.xml",
+        format!("<scene version=\"3.0.0\">\n{padding}</scene>\n"),
+    );
+    let e = refused_in(dir.path(), &["info", "a.xml"]);
+    assert!(e.contains("MiB of XML"), "{e}");
+    assert!(
+        e.contains("b.xml:"),
+        "the include that went over is named: {e}"
+    );
+}

@@ -101,12 +101,14 @@ pub fn add_lights(desc: &SceneDesc, ctx: &mut Context) -> Result<(), LoadError> 
                         .error(l.span(), "a scene has at most one environment light"));
                 }
                 // Under the classic integrators the sky is seen by rays that miss, and lights
-                // surfaces as ambient light of its mean radiance (no shadows).
+                // surfaces as ambient light of its mean radiance over directions (no shadows).
                 let mean = match &d.file {
                     Some(file) => {
                         let id = ctx.image(file.get_ref(), file.span(), intensity)?;
                         ctx.builder.environment(Some(id));
-                        ctx.image_mean(id)
+                        ctx.builder
+                            .stored_image(id)
+                            .map_or(Rgb::BLACK, |i| i.latlong_mean())
                     }
                     None => {
                         ctx.builder.background(intensity);

@@ -30,6 +30,11 @@ pub const MAX_SUBSTITUTED: usize = 64 << 20;
 /// readers (and the tree's recursive drop) within any thread's stack on hostile input.
 pub const MAX_NESTING: usize = 100;
 
+/// Most bytes of XML a scene may read, includes counted each time they are included: a file
+/// that includes another a thousand times, which includes a third a thousand times, would
+/// otherwise splice in a billion elements.
+pub const MAX_READ: usize = 64 << 20;
+
 /// Where something is: a file and a 1-based line and column (in characters).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Loc {
@@ -139,6 +144,7 @@ pub fn load(
         chain: vec![Opened::new(path)],
         depth: 0,
         substituted: Cell::new(0),
+        read: 0,
     };
     loader.file(path, None)
 }
@@ -173,6 +179,8 @@ struct Loader<'a> {
     depth: usize,
     /// The bytes `$name`s have added so far.
     substituted: Cell<usize>,
+    /// The bytes of XML read so far, includes counted each time.
+    read: usize,
 }
 
 impl Loader<'_> {
@@ -185,6 +193,17 @@ impl Loader<'_> {
             )),
             None => LoadError::file(path, format!("cannot read the scene file: {e}")),
         })?;
+        self.read += bytes.len();
+        if self.read > MAX_READ {
+            let message = format!(
+                "the scene and its includes come to more than {} MiB of XML",
+                MAX_READ >> 20
+            );
+            return Err(match from {
+                Some(at) => at.error(message),
+                None => LoadError::file(path, message),
+            });
+        }
         self.inputs.add(&bytes);
         let text = String::from_utf8(bytes)
             .map_err(|e| LoadError::file(path, format!("the file is not UTF-8 text: {e}")))?;
@@ -202,6 +221,9 @@ impl Loader<'_> {
         let src = Src {
             file: &file,
             text: &text,
+            line_starts: std::iter::once(0)
+                .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+                .collect(),
         };
         let tag = root.tag_name().name();
         if from.is_none() && tag != "scene" {
@@ -382,11 +404,17 @@ impl Loader<'_> {
 struct Src<'a> {
     file: &'a Rc<Path>,
     text: &'a str,
+    /// Byte offset of each line's start: placing an offset is a binary search, not a scan
+    /// from the file's start (which made large scenes quadratic).
+    line_starts: Vec<usize>,
 }
 
 impl Src<'_> {
     fn loc(&self, offset: usize) -> Loc {
-        let (line, column) = line_column(self.text, offset);
+        let offset = offset.min(self.text.len());
+        let line = self.line_starts.partition_point(|&s| s <= offset).max(1);
+        let start = self.line_starts[line - 1];
+        let (_, column) = line_column(&self.text[start..], offset - start);
         Loc {
             file: Rc::clone(self.file),
             line,

@@ -153,6 +153,11 @@ impl SceneBuilder {
         self.images.len() as u32 - 1
     }
 
+    /// Stored image `id` (from [`SceneBuilder::image`]).
+    pub fn stored_image(&self, id: u32) -> Option<&ImageTexture> {
+        self.images.get(id as usize)
+    }
+
     /// The lat-long image (by index) that rays hitting nothing see, instead of the background
     /// colour.
     pub fn environment(&mut self, image: Option<u32>) -> &mut Self {

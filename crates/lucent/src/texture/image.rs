@@ -49,6 +49,28 @@ impl ImageTexture {
         sum / self.texels.len() as f32
     }
 
+    /// The mean over all directions of the image as a lat-long environment: rows weighted by
+    /// the solid angle they cover (`sin θ`), so the poles count as little as they should.
+    pub fn latlong_mean(&self) -> Rgb {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let mut sum = Rgb::BLACK;
+        let mut weights = 0.0;
+        for y in 0..h {
+            let theta = std::f32::consts::PI * (y as f32 + 0.5) / h as f32;
+            let weight = theta.sin();
+            let row = self.texels[y * w..(y + 1) * w]
+                .iter()
+                .fold(Rgb::BLACK, |a, &t| a + t);
+            sum += row * weight;
+            weights += weight * w as f32;
+        }
+        if weights > 0.0 {
+            sum / weights
+        } else {
+            Rgb::BLACK
+        }
+    }
+
     /// The texel at `(x, y)`, repeating sideways, and up and down unless `clamp_rows`.
     fn texel(&self, x: i64, y: i64, clamp_rows: bool) -> Rgb {
         let x = x.rem_euclid(i64::from(self.width)) as usize;
@@ -122,6 +144,17 @@ mod tests {
         // Repeats: one period over is the same.
         assert_eq!(img.lookup(Vec2::new(1.25, -0.75)), Rgb::gray(0.0));
         assert_eq!(img.mean(), Rgb::gray(1.5));
+        // As an environment, a bright band at a pole counts for little: of a 1 × 10 map lit
+        // only in its top row, the solid angle share is sin(π/20) / Σ sin(π(k+0.5)/10) ≈ 0.0245.
+        let mut texels = vec![Rgb::BLACK; 10];
+        texels[0] = Rgb::WHITE;
+        let polar = ImageTexture::new(1, 10, texels).unwrap();
+        assert!(
+            (polar.latlong_mean().r - 0.0245).abs() < 1e-3,
+            "{:?}",
+            polar.latlong_mean()
+        );
+        assert!((polar.mean().r - 0.1).abs() < 1e-6);
         assert!(ImageTexture::new(2, 2, vec![Rgb::BLACK]).is_none());
     }
 
