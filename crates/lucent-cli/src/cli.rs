@@ -231,6 +231,9 @@ pub struct ExplainArgs {
     /// Also draw the tree as an SVG diagram here.
     #[arg(long, value_name = "FILE.svg")]
     pub svg: Option<PathBuf>,
+    /// Only this sample of the pixel (from 0); all of them (at most 64) when omitted.
+    #[arg(long, value_name = "K")]
+    pub sample: Option<u32>,
     /// Settings that override the scene file's.
     #[command(flatten)]
     pub overrides: Overrides,

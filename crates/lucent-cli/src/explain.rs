@@ -15,6 +15,9 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::process::ExitCode;
 
+/// Most samples whose trees are printed at once.
+const MAX_SAMPLES: u32 = 64;
+
 /// Traces the pixel's samples with recording on; prints and draws their trees.
 pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
     let job = Job::load(args.scene.as_deref(), &args.overrides)?;
@@ -37,6 +40,19 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
     if let Some(svg) = &args.svg {
         crate::output::check_writable(svg)?;
     }
+    let samples = match args.sample {
+        Some(k) if k >= s.spp => bail!(
+            "sample {k} does not exist: the pixel has {} (0 to {})",
+            s.spp,
+            s.spp - 1
+        ),
+        Some(k) => k..k + 1,
+        None if s.spp > MAX_SAMPLES => bail!(
+            "the pixel has {} samples; pick one with --sample K (their trees would fill pages)",
+            s.spp
+        ),
+        None => 0..s.spp,
+    };
     let pixel = u64::from(y) * u64::from(w) + u64::from(x);
     let mut out = String::new();
     let name = job.scene_path.as_ref().map_or_else(
@@ -50,7 +66,8 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
     )?;
     let mut trees = Vec::new();
     let (mut value, mut sum) = (Rgb::BLACK, Rgb::BLACK);
-    for sample in 0..s.spp {
+    let mut finite = 0u32;
+    for sample in samples {
         let (dx, dy) = pixel_offset(s.seed, pixel, sample, s.spp);
         let ray = scene.camera.ray(x as f32 + dx, y as f32 + dy);
         let mut tree = RayTree::default();
@@ -64,17 +81,28 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
         )?;
         print_node(&mut out, &root, 1)?;
         writeln!(out, "  radiance {}", rgb(radiance))?;
-        value += radiance;
-        sum += root
-            .walk()
-            .iter()
-            .map(|n| n.contribution())
-            .fold(Rgb::BLACK, |a, b| a + b);
+        if radiance.is_finite() {
+            value += radiance;
+            sum += root
+                .walk()
+                .iter()
+                .map(|n| n.contribution())
+                .fold(Rgb::BLACK, |a, b| a + b);
+            finite += 1;
+        } else {
+            writeln!(out, "  (NaN or infinite: the film leaves this sample out)")?;
+        }
         trees.push(root);
     }
-    let n = s.spp as f32;
+    let n = finite.max(1) as f32;
     writeln!(out, "\nsum of contributions: {}", exact(sum * (1.0 / n)))?;
-    writeln!(out, "pixel value:          {}", exact(value * (1.0 / n)))?;
+    // One sample chosen: its own value, not the pixel's.
+    let label = if args.sample.is_some() {
+        "sample value:         "
+    } else {
+        "pixel value:          "
+    };
+    writeln!(out, "{label}{}", exact(value * (1.0 / n)))?;
     print!("{out}");
     if let Some(path) = &args.svg {
         let svg = draw(&trees);

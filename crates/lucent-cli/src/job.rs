@@ -150,8 +150,10 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
     if aa == SamplingName::Adaptive && o.aa_block.is_some() {
         bail!("--aa-block needs --aa quadtree");
     }
-    if o.no_shadows {
-        d.render.shadows = false;
+    if o.spp.is_some() && aa != SamplingName::Uniform {
+        bail!(
+            "--spp has no effect with adaptive or quadtree sampling (each pixel takes its corners)"
+        );
     }
     if let Some(t) = o.aa_threshold {
         d.render.aa_threshold = Some(from_flag(Finite(t)));
@@ -197,6 +199,13 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
             TriangleTestArg::Watertight => TriangleTestName::Watertight,
             TriangleTestArg::Projection => TriangleTestName::Projection,
         };
+    }
+    // After the integrator's flag, which it depends on.
+    if o.no_shadows {
+        if d.render.integrator != IntegratorName::Whitted {
+            bail!("--no-shadows applies to the whitted integrator only");
+        }
+        d.render.shadows = Some(from_flag(false));
     }
     Ok(())
 }

@@ -51,6 +51,8 @@ fn adaptive_settings_need_adaptive_sampling() {
         &["render", "--aa-block", "2"],
         &["render", "--aa", "adaptive", "--aa-block", "2"],
         &["render", "--aa", "quadtree", "--aa-block", "5"],
+        &["render", "--aa", "adaptive", "--spp", "4"],
+        &["render", "--no-shadows", "--integrator", "raycast"],
     ] {
         let output = run(dir.path(), args);
         let stderr = String::from_utf8_lossy(&output.stderr);

@@ -135,3 +135,24 @@ fn bad_requests_are_refused() {
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
 }
+
+#[test]
+fn one_sample_of_many_is_explained_on_request() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = lucent()
+        .current_dir(dir.path())
+        .args(["explain", "--pixel", "10,10", "--spp", "100"])
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("--sample K"));
+    let text = explain(
+        dir.path(),
+        &["--pixel", "10,10", "--spp", "100", "--sample", "99"],
+    );
+    assert!(text.contains("sample 99, through"), "{text}");
+    assert_eq!(text.matches("camera ray").count(), 1);
+    let value = triple(&text, "sample value:");
+    // Pixel (10, 10) sees the sky: the background.
+    assert!((value[2] - 0.85).abs() < 1e-6, "{value:?}");
+}

@@ -55,7 +55,13 @@ pub fn read_mesh_part(
 pub struct MeshFiles {
     obj: HashMap<PathBuf, Arc<ObjFile>>,
     gltf: HashMap<PathBuf, Arc<GltfFile>>,
+    /// Vertices and triangles of the meshes read so far.
+    stored: u64,
 }
+
+/// Most vertices plus triangles a scene's meshes may hold in all (about 5 GB of geometry and
+/// accelerators); instances of a stored mesh do not count again.
+pub const MAX_STORED: u64 = 1 << 27;
 
 impl std::fmt::Debug for MeshFiles {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -76,6 +82,28 @@ impl MeshFiles {
     /// As [`read_mesh_part`], reusing OBJ files already parsed (their bytes are added to the
     /// fingerprint the first time only).
     pub fn read_part(
+        &mut self,
+        path: &Path,
+        part: Option<&str>,
+        options: &LoadOptions,
+        fingerprint: &mut Fingerprint,
+    ) -> Result<Mesh, LoadError> {
+        let mesh = self.decode_part(path, part, options, fingerprint)?;
+        // A budget over every mesh stored: small files can name many large parts (glTF
+        // accessors over one buffer, each a part of its own).
+        self.stored += (mesh.positions.len() + mesh.triangles.len()) as u64;
+        if self.stored > MAX_STORED {
+            return Err(LoadError::file(
+                path,
+                format!(
+                    "the scene's meshes come to more than {MAX_STORED} vertices and triangles stored"
+                ),
+            ));
+        }
+        Ok(mesh)
+    }
+
+    fn decode_part(
         &mut self,
         path: &Path,
         part: Option<&str>,

@@ -307,6 +307,12 @@ fn sampling_settings_belong_to_their_sampling() {
         "aa_block must be between 1 and 4",
     );
     assert_error(&format!("{CAMERA}[render]\naa = \"jitter\"\n"), 5, 6, "");
+    assert_error(
+        &format!("{CAMERA}[render]\nintegrator = \"raycast\"\nshadows = false\n"),
+        6,
+        11,
+        "`shadows` applies to the whitted integrator only",
+    );
     // A good one: adaptive settings in the file, one film sample per pixel.
     let text = format!(
         "{CAMERA}[image]\nsamples = 16\n[render]\naa = \"quadtree\"\naa_threshold = 0.05\naa_block = 2\n"

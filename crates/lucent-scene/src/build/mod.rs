@@ -298,7 +298,7 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         IntegratorName::Whitted => Integrator::Whitted(Whitted {
             max_depth,
             min_weight,
-            shadows: r.shadows,
+            shadows: r.shadows.as_ref().is_none_or(|s| *s.get_ref()),
         }),
         IntegratorName::DebugNormals => Integrator::Debug(DebugView::Normals),
         IntegratorName::DebugDepth => Integrator::Debug(DebugView::Depth),
@@ -307,6 +307,11 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         IntegratorName::DebugBarycentrics => Integrator::Debug(DebugView::Barycentrics),
         IntegratorName::DebugCost => Integrator::Debug(DebugView::Cost),
     };
+    if let Some(s) = &r.shadows
+        && r.integrator != IntegratorName::Whitted
+    {
+        return Err(source.error(s.span(), "`shadows` applies to the whitted integrator only"));
+    }
     let sampling = sampling(r, source)?;
     Ok(RenderSettings {
         integrator,

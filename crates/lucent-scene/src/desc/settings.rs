@@ -115,7 +115,8 @@ pub struct RenderDesc {
     /// `"watertight"` (default) or `"projection"`.
     pub triangle_test: TriangleTestName,
     /// Whitted: trace shadow rays (default true).
-    pub shadows: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shadows: Option<Spanned<bool>>,
     /// `"uniform"` (default), `"adaptive"` or `"quadtree"`.
     pub aa: SamplingName,
     /// Adaptive and quadtree: the corners' difference that splits (default 0.1).
@@ -138,7 +139,7 @@ impl Default for RenderDesc {
             seed: 0,
             accelerator: Spanned::new(0..0, lucent::accel::AccelKind::default().name().to_string()),
             triangle_test: TriangleTestName::default(),
-            shadows: true,
+            shadows: None,
             aa: SamplingName::default(),
             aa_threshold: None,
             aa_depth: None,
