@@ -157,7 +157,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
                 },
                 a.threshold,
                 a.depth,
-                rendered.stats.rays.camera as f64 / (f64::from(w) * f64::from(h))
+                rendered.stats.rays.camera as f64 / rendered.stats.samples.max(1) as f64
             ),
             None => format!("{} spp", settings.spp),
         };

@@ -100,7 +100,7 @@ impl Default for RenderSettings {
 pub struct RenderStats {
     /// Rays by kind, and accelerator work.
     pub rays: RayStats,
-    /// Samples taken (camera rays) in this run.
+    /// Film samples taken in this run: camera rays with uniform sampling, pixels with adaptive.
     pub samples: u64,
     /// Wall-clock time of the render.
     pub elapsed: Duration,
@@ -331,7 +331,7 @@ pub fn render(
     let complete = samples_range.0 == settings.spp;
     let stats = RenderStats {
         rays,
-        samples: rays.camera,
+        samples: done.load(Ordering::Relaxed),
         elapsed: begin.elapsed(),
         threads,
     };
