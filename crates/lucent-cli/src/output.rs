@@ -148,7 +148,7 @@ pub fn write_density_map(
     depth: u32,
     path: &Path,
 ) -> anyhow::Result<()> {
-    let full = 4 + 5 * (4u64.pow(depth) - 1) / 3;
+    let full = lucent::schedule::adaptive::corners_fully_split(depth);
     let span = (full - 4).max(1) as f64;
     let grey: Vec<u8> = density
         .iter()

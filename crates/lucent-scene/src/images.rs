@@ -21,29 +21,28 @@ pub fn read_image(path: &Path, inputs: &mut Fingerprint) -> Result<ImageTexture,
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
     inputs.add(&bytes);
-    let (w, h) = image::ImageReader::new(std::io::Cursor::new(&bytes))
+    let unreadable =
+        |e: image::ImageError| LoadError::file(path, format!("cannot read the image: {e}"));
+    let mut decoder = image::ImageReader::new(std::io::Cursor::new(&bytes))
         .with_guessed_format()
         .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?
-        .into_dimensions()
-        .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
+        .into_decoder()
+        .map_err(unreadable)?;
+    // The header's size, checked before anything is decoded.
+    let (w, h) = image::ImageDecoder::dimensions(&decoder);
     if u64::from(w) * u64::from(h) > MAX_TEXELS {
         return Err(LoadError::file(
             path,
             format!("the image is {w}×{h}: more than the {MAX_TEXELS} texels lucent reads"),
         ));
     }
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
-        .with_guessed_format()
-        .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(MAX_IMAGE_SIDE);
     limits.max_image_height = Some(MAX_IMAGE_SIDE);
     limits.max_alloc = Some(MAX_DECODE_BYTES);
-    reader.limits(limits);
-    let decoded = reader
-        .decode()
+    let decoded = image::ImageDecoder::set_limits(&mut decoder, limits)
+        .and_then(|()| image::DynamicImage::from_decoder(decoder))
         .map_err(|e| LoadError::file(path, format!("cannot decode the image: {e}")))?;
-    let (w, h) = (decoded.width(), decoded.height());
     let float = matches!(
         decoded.color(),
         image::ColorType::Rgb32F | image::ColorType::Rgba32F

@@ -163,16 +163,9 @@ impl ObjFile {
         }
         if !self.colors.is_empty() {
             // Written as display values (8-bit colours over 255), as PLY colours are.
-            let linear = |c: Rgb| {
-                Rgb::new(
-                    srgb_to_linear(c.r),
-                    srgb_to_linear(c.g),
-                    srgb_to_linear(c.b),
-                )
-            };
             mesh.colors = corners
                 .iter()
-                .map(|c| linear(self.colors[c[0] as usize]))
+                .map(|c| Rgb::from(self.colors[c[0] as usize].to_array().map(srgb_to_linear)))
                 .collect();
         }
         Some(mesh)

@@ -329,32 +329,30 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
 
 /// `[render] aa` and its settings, checked.
 fn sampling(r: &RenderDesc, source: &Source) -> Result<Sampling, LoadError> {
-    let span = |v: &Option<Spanned<_>>| v.as_ref().map(|s: &Spanned<_>| s.span());
     let threshold = r.aa_threshold.as_ref().map(|t| (t.get_ref().0, t.span()));
     let depth = r.aa_depth.as_ref().map(|d| (*d.get_ref(), d.span()));
     let block = r.aa_block.as_ref().map(|b| (*b.get_ref(), b.span()));
-    let present = [
-        ("aa_threshold", threshold.as_ref().map(|t| t.1.clone())),
-        ("aa_depth", span(&r.aa_depth)),
-        ("aa_block", span(&r.aa_block)),
-    ];
-    let d = Adaptive::default();
     let block = match r.aa {
         SamplingName::Uniform => {
-            if let Some((key, span)) = present.iter().find_map(|(k, s)| s.clone().map(|s| (k, s))) {
-                return Err(source.error(
+            let given = [
+                ("aa_threshold", threshold.as_ref().map(|t| &t.1)),
+                ("aa_depth", depth.as_ref().map(|d| &d.1)),
+                ("aa_block", block.as_ref().map(|b| &b.1)),
+            ];
+            return match given.into_iter().find_map(|(k, s)| Some((k, s?.clone()))) {
+                Some((key, span)) => Err(source.error(
                     span,
                     format!("`{key}` needs `aa = \"adaptive\"` or `\"quadtree\"`"),
-                ));
-            }
-            return Ok(Sampling::Uniform);
+                )),
+                None => Ok(Sampling::Uniform),
+            };
         }
-        SamplingName::Adaptive => {
-            if let Some((_, span)) = block {
+        SamplingName::Adaptive => match block {
+            Some((_, span)) => {
                 return Err(source.error(span, "`aa_block` needs `aa = \"quadtree\"`"));
             }
-            0
-        }
+            None => 0,
+        },
         SamplingName::Quadtree => match block {
             Some((b, span)) => {
                 check(
@@ -368,16 +366,18 @@ fn sampling(r: &RenderDesc, source: &Source) -> Result<Sampling, LoadError> {
             None => 3,
         },
     };
-    if let Some((t, span)) = threshold.clone() {
-        check(source, span, t >= 0.0, "aa_threshold must be at least 0")?;
-    }
-    if let Some((v, span)) = depth.clone() {
+    let d = Adaptive::default();
+    if let Some((t, span)) = &threshold {
         check(
             source,
-            span,
-            v <= ADAPTIVE_MAX_DEPTH,
-            &format!("aa_depth must be at most {ADAPTIVE_MAX_DEPTH}"),
+            span.clone(),
+            *t >= 0.0,
+            "aa_threshold must be at least 0",
         )?;
+    }
+    if let Some((v, span)) = &depth {
+        let message = format!("aa_depth must be at most {ADAPTIVE_MAX_DEPTH}");
+        check(source, span.clone(), *v <= ADAPTIVE_MAX_DEPTH, &message)?;
     }
     Ok(Sampling::Adaptive(Adaptive {
         threshold: threshold.map_or(d.threshold, |t| t.0),

@@ -35,25 +35,15 @@ pub enum DebugView {
 }
 
 impl DebugView {
-    /// Every view, in the order of the docs.
-    pub const ALL: [DebugView; 6] = [
-        DebugView::Normals,
-        DebugView::Depth,
-        DebugView::Albedo,
-        DebugView::Id,
-        DebugView::Barycentrics,
-        DebugView::Cost,
-    ];
-
-    /// The name after `debug:` in scene files and on the command line.
+    /// The integrator's name in scene files and on the command line: `debug:` and the view.
     pub fn name(self) -> &'static str {
         match self {
-            DebugView::Normals => "normals",
-            DebugView::Depth => "depth",
-            DebugView::Albedo => "albedo",
-            DebugView::Id => "id",
-            DebugView::Barycentrics => "barycentrics",
-            DebugView::Cost => "cost",
+            DebugView::Normals => "debug:normals",
+            DebugView::Depth => "debug:depth",
+            DebugView::Albedo => "debug:albedo",
+            DebugView::Id => "debug:id",
+            DebugView::Barycentrics => "debug:barycentrics",
+            DebugView::Cost => "debug:cost",
         }
     }
 }

@@ -75,12 +75,7 @@ impl Integrator {
         match self {
             Integrator::Raycast => "raycast",
             Integrator::Whitted(_) => "whitted",
-            Integrator::Debug(DebugView::Normals) => "debug:normals",
-            Integrator::Debug(DebugView::Depth) => "debug:depth",
-            Integrator::Debug(DebugView::Albedo) => "debug:albedo",
-            Integrator::Debug(DebugView::Id) => "debug:id",
-            Integrator::Debug(DebugView::Barycentrics) => "debug:barycentrics",
-            Integrator::Debug(DebugView::Cost) => "debug:cost",
+            Integrator::Debug(view) => view.name(),
         }
     }
 

@@ -35,6 +35,12 @@ use std::sync::{Arc, Mutex, OnceLock};
 /// The deepest subdivision allowed: 2^8 = 256 sub-pixels per pixel side.
 pub const MAX_DEPTH: u32 = 8;
 
+/// The corners a pixel uses when split at every level down to `depth`, as
+/// [`BandCorners::pixel`] counts them: 4, and 5 more for each split.
+pub fn corners_fully_split(depth: u32) -> u64 {
+    4 + 5 * (4u64.pow(depth) - 1) / 3
+}
+
 /// Settings of adaptive supersampling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Adaptive {
