@@ -79,8 +79,8 @@ impl MeshFiles {
         self.obj.insert(path.to_path_buf(), obj);
     }
 
-    /// As [`read_mesh_part`], reusing OBJ files already parsed (their bytes are added to the
-    /// fingerprint the first time only).
+    /// As [`read_mesh_part`], reusing OBJ and glTF files already read (their bytes are added
+    /// to the fingerprint the first time only), within the scene's budget of [`MAX_STORED`].
     pub fn read_part(
         &mut self,
         path: &Path,
