@@ -6,6 +6,7 @@
 //! pixels merge by adding (each pixel's values come from one film, plus zeros); tone mapping and
 //! encoding happen only on output ([`tonemap`]).
 
+pub mod filter;
 pub mod tonemap;
 
 use crate::Rgb;

@@ -4,7 +4,10 @@
 //! Nothing here keeps state between calls, so a sample can be replayed on its own, and an
 //! image does not depend on the number of threads, the order of tiles, or how the work is split.
 
+pub mod distribution;
+pub mod sobol;
 pub mod stratified;
+pub mod warp;
 
 pub use stratified::pixel_offset;
 
