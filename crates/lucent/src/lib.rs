@@ -14,6 +14,7 @@
 //! - Every random number is a pure function of (seed, pixel, sample, dimension): see
 //!   [`sampling`].
 
+pub mod bsdf;
 pub mod camera;
 pub mod color;
 pub mod film;

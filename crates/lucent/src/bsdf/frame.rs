@@ -1,0 +1,98 @@
+//! An orthonormal shading frame: world directions to the local frame the BSDFs work in and back.
+
+use glam::Vec3;
+
+/// A right-handed orthonormal basis `(s, t, n)` with `s × t = n`; in local coordinates `n` is
+/// `z`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// First tangent (local `x`).
+    pub s: Vec3,
+    /// Second tangent (local `y`).
+    pub t: Vec3,
+    /// The normal (local `z`).
+    pub n: Vec3,
+}
+
+impl Frame {
+    /// A frame around the unit normal `n`, by Duff et al. 2017, "Building an Orthonormal Basis,
+    /// Revisited" (JCGT 6(1)): branch-free but for the sign of `n.z`, and accurate for every
+    /// `n`, including `n.z ≈ −1`, where the older Frisvad construction lost precision.
+    ///
+    /// With `σ = sign(n.z)`, `a = −1/(σ + n.z)` and `b = n.x·n.y·a`:
+    /// `s = (1 + σ·n.x²·a, σ·b, −σ·n.x)`, `t = (b, σ + n.y²·a, −n.y)`.
+    pub fn from_normal(n: Vec3) -> Self {
+        // copysign keeps −0.0 on the negative branch, so σ + n.z never cancels to 0.
+        let sign = 1f32.copysign(n.z);
+        let a = -1.0 / (sign + n.z);
+        let b = n.x * n.y * a;
+        Self {
+            s: Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+            t: Vec3::new(b, sign + n.y * n.y * a, -n.y),
+            n,
+        }
+    }
+
+    /// `v` (world) in this frame's coordinates: `(v·s, v·t, v·n)`.
+    #[inline]
+    pub fn to_local(&self, v: Vec3) -> Vec3 {
+        Vec3::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
+    }
+
+    /// `v` (local) back in world coordinates: `v.x·s + v.y·t + v.z·n`.
+    #[inline]
+    pub fn to_world(&self, v: Vec3) -> Vec3 {
+        self.s * v.x + self.t * v.y + self.n * v.z
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Normals over the sphere, with the poles and the awkward near-−z ones included.
+    fn normals() -> Vec<Vec3> {
+        let mut v = vec![
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            -Vec3::Y,
+            Vec3::new(1e-4, 0.0, -1.0).normalize(),
+            Vec3::new(0.0, -1e-7, -1.0).normalize(),
+            // A tangent normal whose z is −0.0 takes the negative branch.
+            Vec3::new(1.0, 0.0, -0.0),
+        ];
+        for i in 0..200 {
+            let z = -1.0 + (i as f32 + 0.5) / 100.0;
+            let phi = i as f32 * 2.399_963;
+            let r = (1.0 - z * z).sqrt();
+            v.push(Vec3::new(r * phi.cos(), r * phi.sin(), z));
+        }
+        v
+    }
+
+    #[test]
+    fn the_basis_is_orthonormal_and_right_handed() {
+        for n in normals() {
+            let f = Frame::from_normal(n);
+            for (a, b) in [(f.s, f.t), (f.t, f.n), (f.n, f.s)] {
+                assert!(a.dot(b).abs() < 1e-5, "{n}: not orthogonal");
+            }
+            for a in [f.s, f.t] {
+                assert!((a.length() - 1.0).abs() < 1e-5, "{n}: tangent not unit");
+            }
+            assert!((f.s.cross(f.t) - f.n).length() < 1e-5, "{n}: left-handed");
+        }
+    }
+
+    #[test]
+    fn local_and_world_are_inverse() {
+        for n in normals() {
+            let f = Frame::from_normal(n);
+            assert!((f.to_local(n) - Vec3::Z).length() < 1e-5);
+            let v = Vec3::new(0.3, -0.5, 0.81).normalize();
+            assert!((f.to_world(f.to_local(v)) - v).length() < 1e-5);
+            assert!((f.to_local(f.to_world(v)) - v).length() < 1e-5);
+        }
+    }
+}
