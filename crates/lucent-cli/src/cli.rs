@@ -39,6 +39,8 @@ pub enum IntegratorArg {
     Raycast,
     /// Whitted ray tracing: shadows, reflection, refraction.
     Whitted,
+    /// Path tracing: global illumination, area and environment lights, soft shadows.
+    Path,
     /// Debug view: shading normals as colours.
     #[value(name = "debug:normals")]
     DebugNormals,
@@ -138,6 +140,27 @@ pub struct Overrides {
     /// Quadtree: the starting blocks are 2^K pixels a side, K from 1 to 4. Default 3 (8×8).
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=4))]
     pub aa_block: Option<u32>,
+    /// Reconstruction filter (overrides the scene file): `box` (one pixel, the default),
+    /// `tent`, `gaussian` (σ 0.5, radius 2) or `mitchell`.
+    #[arg(long, value_enum)]
+    pub filter: Option<FilterArg>,
+    /// Stop after this many seconds (uniform sampling); without --spp the samples are then
+    /// unbounded, with it whichever comes first ends the render.
+    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
+    pub time_limit: Option<f64>,
+}
+
+/// Reconstruction filters selectable on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FilterArg {
+    /// One pixel, every sample weighted alike.
+    Box,
+    /// A tent of radius 1.
+    Tent,
+    /// A Gaussian of σ 0.5, radius 2 (Mitsuba's default).
+    Gaussian,
+    /// Mitchell–Netravali, B = C = 1/3, radius 2.
+    Mitchell,
 }
 
 fn threshold(s: &str) -> Result<f32, String> {

@@ -1,10 +1,10 @@
 //! A render job: the scene, the command line's overrides, and the fingerprint that tells
 //! whether two renders (shards, a checkpoint and its resumption) draw the same image.
 
-use crate::cli::{AaArg, IntegratorArg, Overrides, TriangleTestArg};
+use crate::cli::{AaArg, FilterArg, IntegratorArg, Overrides, TriangleTestArg};
 use anyhow::{anyhow, bail};
 use lucent_scene::desc::IntegratorName;
-use lucent_scene::desc::settings::{SamplingName, TriangleTestName};
+use lucent_scene::desc::settings::{FilterName, SamplingName, TriangleTestName};
 use lucent_scene::desc::values::Finite;
 use lucent_scene::hash::Fingerprint;
 use lucent_scene::{LoadOptions, Loaded, SceneFile, Spanned};
@@ -54,7 +54,7 @@ impl Job {
         let s = &self.loaded.settings;
         let c = &self.loaded.scene.camera;
         let settings = format!(
-            "lucent {} {}x{} spp={} seed={} tile={} {:?} {:?} {}",
+            "lucent {} {}x{} spp={} seed={} tile={} {:?} {:?} {} {:?} {:?}",
             env!("CARGO_PKG_VERSION"),
             c.width(),
             c.height(),
@@ -63,7 +63,9 @@ impl Job {
             s.tile_size,
             s.integrator,
             s.sampling,
-            self.loaded.scene.triangle_test().name()
+            self.loaded.scene.triangle_test().name(),
+            s.filter,
+            c.lens(),
         );
         let mut f = Fingerprint::default();
         f.add(&self.loaded.inputs.to_le_bytes());
@@ -177,6 +179,7 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
         d.render.integrator = match i {
             IntegratorArg::Raycast => IntegratorName::Raycast,
             IntegratorArg::Whitted => IntegratorName::Whitted,
+            IntegratorArg::Path => IntegratorName::Path,
             IntegratorArg::DebugNormals => IntegratorName::DebugNormals,
             IntegratorArg::DebugDepth => IntegratorName::DebugDepth,
             IntegratorArg::DebugAlbedo => IntegratorName::DebugAlbedo,
@@ -190,6 +193,25 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
     }
     if let Some(s) = o.seed {
         d.render.seed = s;
+    }
+    if let Some(f) = o.filter {
+        d.render.filter = Some(from_flag(match f {
+            FilterArg::Box => FilterName::Box,
+            FilterArg::Tent => FilterName::Tent,
+            FilterArg::Gaussian => FilterName::Gaussian,
+            FilterArg::Mitchell => FilterName::Mitchell,
+        }));
+        d.render.filter_radius = None;
+    }
+    if let Some(t) = o.time_limit {
+        if aa != SamplingName::Uniform {
+            bail!("--time-limit needs uniform sampling (--aa uniform)");
+        }
+        d.render.time_limit = Some(from_flag(Finite(t as f32)));
+        // The samples are unbounded unless the command line bounds them too.
+        if o.spp.is_none() {
+            d.image.samples = from_flag(lucent_scene::build::MAX_SAMPLES);
+        }
     }
     if let Some(a) = o.accel {
         d.render.accelerator = from_flag(a.name().to_string());
@@ -240,6 +262,14 @@ impl Overrides {
         );
         put("aa_depth", self.aa_depth.map(|v| v.to_string()));
         put("aa_block", self.aa_block.map(|v| v.to_string()));
+        put(
+            "filter",
+            self.filter.map(|v| format!("{v:?}").to_lowercase()),
+        );
+        put(
+            "time_limit",
+            self.time_limit.map(|v| v.to_bits().to_string()),
+        );
         pairs.join(";")
     }
 
@@ -286,6 +316,12 @@ impl Overrides {
                 }
                 "aa_depth" => o.aa_depth = Some(v.parse().map_err(|_| bad())?),
                 "aa_block" => o.aa_block = Some(v.parse().map_err(|_| bad())?),
+                "filter" => {
+                    o.filter = Some(
+                        <FilterArg as clap::ValueEnum>::from_str(v, false).map_err(|_| bad())?,
+                    )
+                }
+                "time_limit" => o.time_limit = Some(f64::from_bits(v.parse().map_err(|_| bad())?)),
                 _ => bail!("an unknown setting `{k}`"),
             }
         }
@@ -314,6 +350,8 @@ mod tests {
             aa_threshold: Some(0.1),
             aa_depth: Some(4),
             aa_block: Some(2),
+            filter: Some(FilterArg::Mitchell),
+            time_limit: Some(2.5),
         };
         assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
         assert_eq!(Overrides::from_pairs("").unwrap(), Overrides::default());

@@ -105,9 +105,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         )
         .expect("a valid progress template"),
     );
-    let progress = |done: u64, total: u64| {
-        bar.set_length(total);
-        bar.set_position(done);
+    let started = std::time::Instant::now();
+    let progress = |done: u64, total: u64| match settings.time_limit {
+        // Against a time limit, the time is the progress.
+        Some(limit) => {
+            let limit = limit.as_millis() as u64;
+            bar.set_length(limit);
+            bar.set_position((started.elapsed().as_millis() as u64).min(limit));
+        }
+        None => {
+            bar.set_length(total);
+            bar.set_position(done);
+        }
     };
     let warned = AtomicBool::new(false);
     let save = |film: &Film| {
@@ -159,6 +168,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
                 a.depth,
                 rendered.stats.rays.camera as f64 / rendered.stats.samples.max(1) as f64
             ),
+            None if rendered.timed_out => format!("{least}..{most} spp in the time limit"),
             None => format!("{} spp", settings.spp),
         };
         println!("{}", summary(&plan.output, w, h, &sampled, &rendered.stats));

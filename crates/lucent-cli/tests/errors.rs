@@ -139,7 +139,7 @@ fn bad_flag_values_are_usage_errors() {
     for args in [
         ["--width", "0"],
         ["--spp", "many"],
-        ["--integrator", "path"],
+        ["--integrator", "radiosity"],
     ] {
         let output = lucent().arg("render").args(args).output().unwrap();
         assert_eq!(output.status.code(), Some(2), "{args:?}");

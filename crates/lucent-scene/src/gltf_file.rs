@@ -800,6 +800,8 @@ fn perspective(p: &gltf::camera::Perspective, world: Mat4) -> Result<CameraDesc,
         look_at: Vector(eye + forward),
         up: Vector(up),
         fov: Finite(fov),
+        aperture: None,
+        focus_distance: None,
     })
 }
 

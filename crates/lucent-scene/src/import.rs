@@ -39,6 +39,8 @@ pub fn placeholder_camera() -> Spanned<CameraDesc> {
             look_at: Vector(Vec3::ZERO),
             up: Vector(Vec3::Y),
             fov: Finite(45.0),
+            aperture: None,
+            focus_distance: None,
         },
     )
 }
@@ -60,6 +62,8 @@ pub fn framing_camera(bounds: Aabb, width: u32, height: u32) -> CameraDesc {
         look_at: Vector(center),
         up: Vector(Vec3::Y),
         fov: Finite(FRAMING_FOV),
+        aperture: None,
+        focus_distance: None,
     }
 }
 

@@ -227,10 +227,10 @@ fn collinear_triangle() {
 #[test]
 fn unknown_integrator_and_accelerator() {
     assert_error(
-        &format!("{CAMERA}[render]\nintegrator = \"path\"\n"),
+        &format!("{CAMERA}[render]\nintegrator = \"radiosity\"\n"),
         5,
         14,
-        "unknown variant `path`",
+        "unknown variant `radiosity`",
     );
     assert_error(
         &format!("{CAMERA}[render]\naccelerator = \"kd\"\n"),

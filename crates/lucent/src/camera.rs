@@ -1,4 +1,5 @@
-//! The pinhole camera: a ray from the eye through every point of the image.
+//! The camera: a ray from the eye through every point of the image — a pinhole, or a thin
+//! lens that focuses at one distance and blurs what is nearer or farther (depth of field).
 
 use glam::Vec3;
 use lucent_accel::Ray;
@@ -24,6 +25,9 @@ pub enum CameraError {
     /// A non-finite input.
     #[error("the camera's eye, look_at and up must be finite")]
     NotFinite,
+    /// A negative or non-finite aperture, or a focus distance that is not positive.
+    #[error("the lens needs an aperture radius ≥ 0 and a positive focus distance, got {0} and {1}")]
+    Lens(f32, f32),
 }
 
 /// A pinhole camera with its image resolution.
@@ -41,6 +45,10 @@ pub struct Camera {
     up: Vec3,
     width: u32,
     height: u32,
+    /// Radius of the thin lens's aperture; 0 for a pinhole.
+    lens_radius: f32,
+    /// Distance along the view direction of the plane in focus.
+    focus_distance: f32,
 }
 
 impl Camera {
@@ -80,7 +88,44 @@ impl Camera {
             up: true_up * half_height,
             width,
             height,
+            lens_radius: 0.0,
+            focus_distance: 1.0,
         })
+    }
+
+    /// This camera with a thin lens of aperture radius `radius` focused at `focus_distance`
+    /// along the view direction (radius 0 keeps a pinhole).
+    pub fn with_lens(mut self, radius: f32, focus_distance: f32) -> Result<Self, CameraError> {
+        if !(radius >= 0.0
+            && radius.is_finite()
+            && focus_distance > 0.0
+            && focus_distance.is_finite())
+        {
+            return Err(CameraError::Lens(radius, focus_distance));
+        }
+        self.lens_radius = radius;
+        self.focus_distance = focus_distance;
+        Ok(self)
+    }
+
+    /// The aperture radius (0: a pinhole) and the focus distance.
+    pub fn lens(&self) -> (f32, f32) {
+        (self.lens_radius, self.focus_distance)
+    }
+
+    /// The ray through image point `(x, y)` from the point of the lens chosen by `u` (uniform
+    /// in the unit square, mapped to the aperture's disc): every such ray meets the pinhole
+    /// ray at the plane in focus. A pinhole camera ignores `u`.
+    pub fn ray_through_lens(&self, x: f32, y: f32, u: glam::Vec2) -> Ray {
+        let pinhole = self.ray(x, y);
+        if self.lens_radius == 0.0 {
+            return pinhole;
+        }
+        let along = pinhole.dir.dot(self.forward);
+        let focus = self.eye + pinhole.dir * (self.focus_distance / along);
+        let disc = crate::sampling::warp::square_to_concentric_disk(u) * self.lens_radius;
+        let origin = self.eye + self.right.normalize() * disc.x + self.up.normalize() * disc.y;
+        Ray::new(origin, (focus - origin).normalize())
     }
 
     /// Image width in pixels.

@@ -14,11 +14,14 @@
 //! missing ones, from the next sample index on.
 
 use crate::film::Film;
+use crate::film::filter::{Filter, FilterSampler};
 use crate::integrator::{Integrator, RayStats};
-use crate::sampling::pixel_offset;
+use crate::sampling::sobol::Sampler;
+use crate::sampling::{pixel_offset, uniform};
 use crate::scene::Scene;
 use crate::schedule::adaptive::{Adaptive, Band, BandCorners};
 use crate::schedule::{Tile, tiles};
+use lucent_accel::Ray;
 use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -68,6 +71,10 @@ pub struct RenderSettings {
     pub shard: Shard,
     /// How each pixel is sampled.
     pub sampling: Sampling,
+    /// The reconstruction filter: where in and around its pixel a sample goes, and its weight.
+    pub filter: Filter,
+    /// Stop after this long even if not every pixel has `spp` samples (uniform sampling).
+    pub time_limit: Option<Duration>,
 }
 
 /// How a pixel's value is sampled.
@@ -91,6 +98,8 @@ impl Default for RenderSettings {
             tile_size: 16,
             shard: Shard::default(),
             sampling: Sampling::default(),
+            filter: Filter::default(),
+            time_limit: None,
         }
     }
 }
@@ -122,8 +131,11 @@ pub struct Rendered {
     pub film: Film,
     /// What it cost.
     pub stats: RenderStats,
-    /// False when cancelled before every pixel of the shard got its samples.
+    /// False when cancelled before every pixel of the shard got its samples (a render that
+    /// reached its time limit is complete).
     pub complete: bool,
+    /// True when the time limit ended the render.
+    pub timed_out: bool,
     /// Fewest and most samples over the pixels of this render's shard.
     pub samples_range: (u32, u32),
     /// With adaptive sampling, the corners each pixel used (rows from the top; 0 for pixels
@@ -142,6 +154,9 @@ pub enum RenderError {
         /// The cause.
         source: rayon::ThreadPoolBuildError,
     },
+    /// The reconstruction filter's parameters are out of range.
+    #[error("the reconstruction filter: {0}")]
+    Filter(String),
     /// The film to resume from does not fit the render.
     #[error(
         "the film to resume is {0}×{1} pixels with up to {2} samples; the render is {3}×{4} with {5}"
@@ -220,6 +235,11 @@ pub fn render(
             source,
         })?;
     let threads = pool.current_num_threads();
+    let filter = FilterSampler::new(settings.filter).map_err(RenderError::Filter)?;
+    let deadline = match (adaptive, settings.time_limit) {
+        (None, Some(limit)) => Some(begin + limit),
+        _ => None,
+    };
 
     let work: Vec<Tile> = tiles(width, height, settings.tile_size)
         .into_iter()
@@ -303,11 +323,35 @@ pub fn render(
             // Passes of at most PASS_SAMPLES samples per pixel keep each work item short, so
             // that periodic checkpoints hold recent work even at very high sample counts. A
             // pixel's samples are still taken in the order of their indices.
-            for pass in 0..settings.spp.div_ceil(PASS_SAMPLES) {
-                let upto = settings.spp.min((pass + 1) * PASS_SAMPLES);
+            //
+            // Against a time limit the passes start at one sample per pixel and are sized
+            // from the time the earlier ones took to end near the limit, so that the image
+            // stopped there is even: only the last pass may be cut short.
+            let start_samples = lock(&film).sample_range().0;
+            let mut upto = start_samples;
+            while upto < settings.spp {
+                let step = match deadline {
+                    None => PASS_SAMPLES - upto % PASS_SAMPLES,
+                    Some(d) => {
+                        let now = Instant::now();
+                        if now >= d {
+                            break;
+                        }
+                        let taken = upto - start_samples;
+                        if taken == 0 {
+                            1
+                        } else {
+                            let per_sample = begin.elapsed().as_secs_f64() / f64::from(taken);
+                            let fits = (d - now).as_secs_f64() / per_sample.max(1e-12);
+                            (fits.floor() as u32).clamp(1, PASS_SAMPLES)
+                        }
+                    }
+                };
+                upto = settings.spp.min(upto + step);
                 work.par_iter().for_each(|tile| {
                     run(tile, &|t, part| {
-                        render_tile(scene, settings, t, upto, part, hooks.cancel)
+                        let to = (upto, deadline);
+                        render_tile(scene, settings, &filter, t, to, part, hooks.cancel)
                     })
                 });
             }
@@ -328,7 +372,10 @@ pub fn render(
     } else {
         (least, most)
     };
-    let complete = samples_range.0 == settings.spp;
+    let timed_out = deadline.is_some_and(|d| Instant::now() >= d)
+        && samples_range.0 < settings.spp
+        && !hooks.cancel.load(Ordering::Relaxed);
+    let complete = samples_range.0 == settings.spp || timed_out;
     let stats = RenderStats {
         rays,
         samples: done.load(Ordering::Relaxed),
@@ -339,6 +386,7 @@ pub fn render(
         film,
         stats,
         complete,
+        timed_out,
         samples_range,
         density: density.into_inner().unwrap_or_else(|e| e.into_inner()),
     })
@@ -393,13 +441,14 @@ fn render_tile_adaptive(
 }
 
 /// Adds the samples of every pixel of `tile` below index `upto` to `part` (the tile's region of
-/// the film); stops between samples when cancelled. Returns the rays traced and the samples
-/// taken.
+/// the film); stops between samples when cancelled, and between pixels past the deadline.
+/// Returns the rays traced and the samples taken.
 fn render_tile(
     scene: &Scene,
     settings: &RenderSettings,
+    filter: &FilterSampler,
     tile: &Tile,
-    upto: u32,
+    (upto, deadline): (u32, Option<Instant>),
     part: &mut Film,
     cancel: &AtomicBool,
 ) -> (RayStats, u64) {
@@ -408,22 +457,67 @@ fn render_tile(
     let width = u64::from(scene.camera.width());
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
+            if deadline.is_some_and(|d| Instant::now() >= d) {
+                return (stats, taken);
+            }
             let pixel = u64::from(y) * width + u64::from(x);
             let (px, py) = (x - tile.x0, y - tile.y0);
             for s in part.samples(px, py)..upto {
                 if cancel.load(Ordering::Relaxed) {
                     return (stats, taken);
                 }
-                let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
-                let ray = scene.camera.ray(x as f32 + dx, y as f32 + dy);
+                let mut sampler = Sampler::new(settings.seed, pixel, s);
+                let (ray, weight) =
+                    camera_sample(scene, settings, filter, (x, y), pixel, s, &mut sampler);
                 stats.camera += 1;
-                let value = settings.integrator.radiance(scene, &ray, &mut stats);
-                let finite = value.is_finite();
+                let value = settings
+                    .integrator
+                    .radiance(scene, &ray, &mut sampler, &mut stats);
+                let finite = value.is_finite() && weight.is_finite();
                 stats.nonfinite += u64::from(!finite);
-                part.add_sample(px, py, finite.then_some(value), 1.0);
+                part.add_sample(px, py, finite.then_some(value), weight);
                 taken += 1;
             }
         }
     }
     (stats, taken)
+}
+
+/// The camera ray of sample `s` of pixel `(x, y)` (index `pixel`), and its film weight.
+///
+/// The path tracer draws the position in the filter and on the lens from its low-discrepancy
+/// sampler. The deterministic integrators keep the stratified jitter of
+/// [`pixel_offset`] (with the default one-pixel box filter, exactly as before filters
+/// existed), mapped through the filter otherwise, and the lens position from the hash.
+fn camera_sample(
+    scene: &Scene,
+    settings: &RenderSettings,
+    filter: &FilterSampler,
+    (x, y): (u32, u32),
+    pixel: u64,
+    s: u32,
+    sampler: &mut Sampler,
+) -> (Ray, f32) {
+    let (x, y) = (x as f32, y as f32);
+    if let Integrator::Path(_) = settings.integrator {
+        let (offset, weight) = filter.sample(sampler.next_2d());
+        let lens = sampler.next_2d();
+        let ray = scene
+            .camera
+            .ray_through_lens(x + 0.5 + offset.x, y + 0.5 + offset.y, lens);
+        return (ray, weight);
+    }
+    let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
+    let lens = glam::Vec2::new(
+        uniform(settings.seed, pixel, s, 2),
+        uniform(settings.seed, pixel, s, 3),
+    );
+    if settings.filter == Filter::default() {
+        return (scene.camera.ray_through_lens(x + dx, y + dy, lens), 1.0);
+    }
+    let (offset, weight) = filter.sample(glam::Vec2::new(dx, dy));
+    let ray = scene
+        .camera
+        .ray_through_lens(x + 0.5 + offset.x, y + 0.5 + offset.y, lens);
+    (ray, weight)
 }

@@ -7,6 +7,7 @@ use lucent::camera::Camera;
 use lucent::integrator::Integrator;
 use lucent::material::Material;
 use lucent::render::{Hooks, RenderSettings, Rendered, Sampling, render};
+use lucent::sampling::sobol::Sampler;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::schedule::adaptive::Adaptive;
 use lucent::shape::Sphere;
@@ -136,8 +137,12 @@ fn edge_pixels_approach_the_covered_area() {
                         y as f32 + (j as f32 + 0.5) / n as f32,
                     );
                     let mut stats = Default::default();
-                    covered +=
-                        u32::from(Integrator::Raycast.radiance(&scene, &ray, &mut stats).r > 0.5);
+                    covered += u32::from(
+                        Integrator::Raycast
+                            .radiance(&scene, &ray, &mut Sampler::new(0, 0, 0), &mut stats)
+                            .r
+                            > 0.5,
+                    );
                 }
             }
             let truth = f64::from(covered) / f64::from(n * n);

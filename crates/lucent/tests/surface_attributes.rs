@@ -10,6 +10,7 @@ use lucent::accel::{AccelKind, Ray, TraversalStats};
 use lucent::integrator::{Integrator, RayStats, Whitted};
 use lucent::light::{Light, PointLight};
 use lucent::material::Material;
+use lucent::sampling::sobol::Sampler;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::Mesh;
 use lucent::texture::{ImageTexture, Texture};
@@ -144,7 +145,12 @@ fn image_textures_are_looked_up_at_the_uvs_and_tinted_by_vertex_colours() {
     let scene = b.build().unwrap();
     let raycast = |x: f32, y: f32| {
         let ray = Ray::new(Vec3::new(x, y, 5.0), -Vec3::Z);
-        Integrator::Raycast.radiance(&scene, &ray, &mut RayStats::default())
+        Integrator::Raycast.radiance(
+            &scene,
+            &ray,
+            &mut Sampler::new(0, 0, 0),
+            &mut RayStats::default(),
+        )
     };
     // u = x here: u = 0.25 is the red texel's centre, u = 0.75 the blue one's.
     assert_eq!(raycast(0.25, 0.1), Rgb::new(1.0, 0.0, 0.0));
@@ -170,8 +176,14 @@ fn rays_that_miss_see_the_environment_image() {
     b.environment(Some(sky)).background(Rgb::new(1.0, 0.0, 1.0));
     let scene = b.build().unwrap();
     let whitted = Integrator::Whitted(Whitted::default());
-    let look =
-        |d: Vec3| whitted.radiance(&scene, &Ray::new(Vec3::ZERO, d), &mut RayStats::default());
+    let look = |d: Vec3| {
+        whitted.radiance(
+            &scene,
+            &Ray::new(Vec3::ZERO, d),
+            &mut Sampler::new(0, 0, 0),
+            &mut RayStats::default(),
+        )
+    };
     assert_eq!(look(Vec3::Y), Rgb::WHITE);
     assert_eq!(look(-Vec3::Y), Rgb::gray(0.1));
 }
@@ -195,11 +207,21 @@ fn emission_is_seen_from_the_front_only() {
     let front = Ray::new(Vec3::new(0.2, 0.2, 5.0), -Vec3::Z);
     let back = Ray::new(Vec3::new(0.2, 0.2, -5.0), Vec3::Z);
     assert_eq!(
-        whitted.radiance(&scene, &front, &mut RayStats::default()),
+        whitted.radiance(
+            &scene,
+            &front,
+            &mut Sampler::new(0, 0, 0),
+            &mut RayStats::default()
+        ),
         Rgb::new(2.0, 1.0, 0.5)
     );
     assert_eq!(
-        whitted.radiance(&scene, &back, &mut RayStats::default()),
+        whitted.radiance(
+            &scene,
+            &back,
+            &mut Sampler::new(0, 0, 0),
+            &mut RayStats::default()
+        ),
         Rgb::BLACK
     );
 }

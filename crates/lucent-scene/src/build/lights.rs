@@ -16,8 +16,9 @@ pub struct EmitterSurface {
     pub centroid: Vec3,
 }
 
-/// Adds every `[[light]]`; an environment light sets the background and the ambient light.
-pub fn add_lights(desc: &SceneDesc, ctx: &mut Context) -> Result<(), LoadError> {
+/// Adds every `[[light]]`; an environment light sets the background, and under the classic
+/// integrators (not `path`, which samples it as a light) the ambient light too.
+pub fn add_lights(desc: &SceneDesc, ctx: &mut Context, path: bool) -> Result<(), LoadError> {
     let mut environment = None;
     for l in &desc.lights {
         let d = l.get_ref();
@@ -121,7 +122,7 @@ pub fn add_lights(desc: &SceneDesc, ctx: &mut Context) -> Result<(), LoadError> 
         };
         ctx.builder.light(light);
     }
-    if let Some(mean) = environment {
+    if let Some(mean) = environment.filter(|_| !path) {
         ctx.builder.add_ambient(mean);
         ctx.warnings.push(format!(
             "{}: the environment light is seen by rays that miss and lights surfaces as ambient light (no shadows) under the classic integrators",

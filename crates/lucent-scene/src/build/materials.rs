@@ -6,7 +6,7 @@ use super::{Context, refuse_keys, span};
 use crate::desc::{Color, DiffuseDesc, MaterialDesc, MaterialKind};
 use crate::error::LoadError;
 use lucent::Rgb;
-use lucent::material::Material;
+use lucent::material::{Material, Surface};
 use lucent::texture::Texture;
 use toml::Spanned;
 
@@ -119,7 +119,20 @@ pub fn whitted_material(
 
     let mut material = Material {
         ke: c(d.emission, Rgb::BLACK),
+        two_sided: d.two_sided.unwrap_or(true),
         ..Material::default()
+    };
+    // GGX roughness of the rough kinds (0: smooth) for the path tracer.
+    let rough = |k: MaterialKind| {
+        if matches!(
+            k,
+            MaterialKind::RoughConductor | MaterialKind::RoughDielectric
+        ) || (k == MaterialKind::Plastic && d.roughness.is_some())
+        {
+            alpha
+        } else {
+            0.0
+        }
     };
     let mut approx = None;
     match kind {
@@ -138,6 +151,15 @@ pub fn whitted_material(
                 .unwrap_or(Texture::Solid(Rgb::gray(0.5)));
             material.ka = mean_colour(&kd, ctx);
             material.kd = kd;
+            material.surface = if kind == MaterialKind::Plastic {
+                Surface::Plastic {
+                    eta: ior / ext_ior,
+                    specular,
+                    alpha: rough(kind),
+                }
+            } else {
+                Surface::Diffuse
+            };
             if kind == MaterialKind::Plastic {
                 let f0 = dielectric_f0(ior / ext_ior);
                 if d.roughness.is_some() {
@@ -150,7 +172,7 @@ pub fn whitted_material(
             }
         }
         MaterialKind::Conductor | MaterialKind::RoughConductor => {
-            let f0 = match (&d.metal, d.eta, d.k) {
+            let (eta, k) = match (&d.metal, d.eta, d.k) {
                 (Some(name), None, None) => {
                     let Some((_, eta, k)) = METALS
                         .iter()
@@ -166,10 +188,13 @@ pub fn whitted_material(
                             ),
                         ));
                     };
-                    conductor_f0(Rgb::from(*eta), Rgb::from(*k))
+                    (Rgb::from(*eta), Rgb::from(*k))
                 }
-                (None, Some(eta), k) => conductor_f0(eta.0, k.map_or(Rgb::BLACK, |k| k.0)),
-                (None, None, None) => Rgb::WHITE,
+                (None, Some(eta), k) => (eta.0, k.map_or(Rgb::BLACK, |k| k.0)),
+                // A perfect mirror: Mitsuba's default is aluminium, but a conductor without
+                // its constants has always been white here; an index of 0 with no extinction
+                // reflects everything at every angle.
+                (None, None, None) => (Rgb::BLACK, Rgb::gray(1e4)),
                 (None, None, Some(_)) => {
                     return Err(ctx
                         .source
@@ -182,6 +207,13 @@ pub fn whitted_material(
                     ));
                 }
             };
+            let f0 = conductor_f0(eta, k);
+            material.surface = Surface::Conductor {
+                eta,
+                k,
+                specular,
+                alpha: rough(kind),
+            };
             if kind == MaterialKind::RoughConductor {
                 material.shininess = phong_exponent(alpha);
                 material.ks = specular * f0;
@@ -193,6 +225,12 @@ pub fn whitted_material(
         MaterialKind::Dielectric | MaterialKind::RoughDielectric => {
             let f0 = dielectric_f0(ior / ext_ior);
             material.ior = ior / ext_ior;
+            material.surface = Surface::Dielectric {
+                eta: ior / ext_ior,
+                specular,
+                transmittance: c(d.transmittance, Rgb::WHITE),
+                alpha: rough(kind),
+            };
             material.kr = specular * f0;
             material.kt = c(d.transmittance, Rgb::WHITE) * (1.0 - f0);
             if kind == MaterialKind::RoughDielectric {

@@ -7,7 +7,7 @@ pub mod materials;
 mod objects;
 pub mod shapes;
 
-use crate::desc::settings::{RenderDesc, SamplingName, TriangleTestName};
+use crate::desc::settings::{FilterName, RenderDesc, SamplingName, TriangleTestName};
 use crate::desc::{IntegratorName, SceneDesc};
 use crate::error::{LoadError, Source};
 use crate::hash::Fingerprint;
@@ -16,7 +16,8 @@ use crate::paths::LoadOptions;
 use lucent::Rgb;
 use lucent::accel::AccelKind;
 use lucent::camera::Camera;
-use lucent::integrator::{DebugView, Integrator, Whitted};
+use lucent::film::filter::Filter;
+use lucent::integrator::{DebugView, Integrator, PathTracer, Whitted};
 use lucent::render::{RenderSettings, Sampling};
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::schedule::adaptive::{Adaptive, MAX_DEPTH as ADAPTIVE_MAX_DEPTH};
@@ -143,7 +144,22 @@ pub fn build_with_files(
     let cam = desc.camera.get_ref();
     let (width, height) = (*desc.image.width.get_ref(), *desc.image.height.get_ref());
     let camera = Camera::new(cam.eye.0, cam.look_at.0, cam.up.0, cam.fov.0, width, height)
+        .and_then(|c| match cam.aperture {
+            None => Ok(c),
+            Some(a) => {
+                let focus = cam
+                    .focus_distance
+                    .map_or((cam.look_at.0 - cam.eye.0).length(), |f| f.0);
+                c.with_lens(a.0, focus)
+            }
+        })
         .map_err(|e| source.error(desc.camera.span(), e.to_string()))?;
+    if cam.focus_distance.is_some() && cam.aperture.is_none() {
+        return Err(source.error(
+            desc.camera.span(),
+            "`focus_distance` needs an `aperture` (a pinhole is in focus everywhere)",
+        ));
+    }
     let mut builder = SceneBuilder::new(camera);
     builder
         .background(desc.world.background.0)
@@ -183,7 +199,8 @@ pub fn build_with_files(
         }
         material_ids.insert(name.as_str(), (ctx.builder.material(material), material));
     }
-    if !approximated.is_empty() {
+    let path = matches!(settings.integrator, Integrator::Path(_));
+    if !approximated.is_empty() && !path {
         let names: Vec<String> = approximated.iter().map(|(_, n)| format!("`{n}`")).collect();
         ctx.warnings.push(format!(
             "{}: rough material{} {} {} rendered smooth (glass) or with a Phong highlight (metal, plastic) by the {} integrator",
@@ -195,7 +212,7 @@ pub fn build_with_files(
         ));
     }
 
-    lights::add_lights(desc, &mut ctx)?;
+    lights::add_lights(desc, &mut ctx, path)?;
 
     let mut meshes = objects::MeshCache::new();
     let mut emitters = Vec::new();
@@ -223,7 +240,10 @@ pub fn build_with_files(
             emitters.push((m.ke, surface));
         }
     }
-    lights::area_lights_as_points(&mut ctx, &emitters, settings.integrator.name());
+    // The path tracer samples the emitting surfaces themselves.
+    if !path {
+        lights::area_lights_as_points(&mut ctx, &emitters, settings.integrator.name());
+    }
 
     let Context {
         builder,
@@ -306,13 +326,41 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         IntegratorName::DebugId => Integrator::Debug(DebugView::Id),
         IntegratorName::DebugBarycentrics => Integrator::Debug(DebugView::Barycentrics),
         IntegratorName::DebugCost => Integrator::Debug(DebugView::Cost),
+        IntegratorName::Path => Integrator::Path(PathTracer {
+            max_depth,
+            rr_depth: r
+                .rr_depth
+                .as_ref()
+                .map_or(PathTracer::default().rr_depth, |d| *d.get_ref()),
+        }),
     };
+    if let Some(d) = &r.rr_depth
+        && r.integrator != IntegratorName::Path
+    {
+        return Err(source.error(d.span(), "`rr_depth` applies to the path integrator only"));
+    }
     if let Some(s) = &r.shadows
         && r.integrator != IntegratorName::Whitted
     {
         return Err(source.error(s.span(), "`shadows` applies to the whitted integrator only"));
     }
     let sampling = sampling(r, source)?;
+    if integrator.is_stochastic() && sampling != Sampling::Uniform {
+        return Err(source.error(
+            0..0,
+            "adaptive and quadtree sampling compare corners traced once: they need a deterministic integrator (raycast, whitted or a debug view), not path",
+        ));
+    }
+    let time_limit = match &r.time_limit {
+        Some(t) if !(t.get_ref().0 > 0.0 && t.get_ref().0 <= 1e7) => {
+            return Err(source.error(t.span(), "time_limit must be a positive number of seconds"));
+        }
+        Some(t) if sampling != Sampling::Uniform => {
+            return Err(source.error(t.span(), "time_limit needs uniform sampling"));
+        }
+        Some(t) => Some(std::time::Duration::from_secs_f32(t.get_ref().0)),
+        None => None,
+    };
     Ok(RenderSettings {
         integrator,
         // An adaptive pixel is one film sample.
@@ -323,8 +371,44 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         },
         seed: r.seed,
         sampling,
+        filter: filter(r, source)?,
+        time_limit,
         ..RenderSettings::default()
     })
+}
+
+/// `[render] filter` and `filter_radius`, checked.
+fn filter(r: &RenderDesc, source: &Source) -> Result<Filter, LoadError> {
+    let name = r.filter.as_ref().map_or(FilterName::Box, |f| *f.get_ref());
+    let mut f = match name {
+        FilterName::Box => Filter::Box { radius: 0.5 },
+        FilterName::Tent => Filter::Tent { radius: 1.0 },
+        FilterName::Gaussian => Filter::Gaussian {
+            radius: 2.0,
+            sigma: 0.5,
+        },
+        FilterName::Mitchell => Filter::Mitchell {
+            radius: 2.0,
+            b: 1.0 / 3.0,
+            c: 1.0 / 3.0,
+        },
+    };
+    if let Some(radius) = &r.filter_radius {
+        let v = radius.get_ref().0;
+        check(
+            source,
+            radius.span(),
+            v > 0.0 && v <= 16.0,
+            "filter_radius must be in (0, 16] pixels",
+        )?;
+        match &mut f {
+            Filter::Box { radius }
+            | Filter::Tent { radius }
+            | Filter::Gaussian { radius, .. }
+            | Filter::Mitchell { radius, .. } => *radius = v,
+        }
+    }
+    Ok(f)
 }
 
 /// `[render] aa` and its settings, checked.

@@ -3,7 +3,7 @@
 use super::{Finite, Vector};
 use serde::{Deserialize, Serialize};
 
-/// `[camera]`: a pinhole camera.
+/// `[camera]`: a pinhole camera, or a thin lens when `aperture` is given.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
@@ -17,6 +17,13 @@ pub struct CameraDesc {
     /// Vertical field of view in degrees (default 45).
     #[serde(default = "default_fov")]
     pub fov: Finite,
+    /// Radius of the lens's aperture, in scene units (default 0: a pinhole, all in focus).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aperture: Option<Finite>,
+    /// Distance from the eye, along the view direction, of the plane in focus (default: the
+    /// distance to `look_at`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub focus_distance: Option<Finite>,
 }
 
 fn default_up() -> Vector {

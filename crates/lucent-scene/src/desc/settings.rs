@@ -54,6 +54,8 @@ pub enum IntegratorName {
     /// Whitted ray tracing.
     #[default]
     Whitted,
+    /// Path tracing: global illumination, area lights, soft shadows.
+    Path,
     /// Debug view: shading normals.
     #[serde(rename = "debug:normals")]
     DebugNormals,
@@ -98,6 +100,21 @@ pub enum SamplingName {
     Quadtree,
 }
 
+/// Reconstruction filters (`[render] filter`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FilterName {
+    /// One pixel, every sample weighted alike (default).
+    #[default]
+    Box,
+    /// A tent (triangle) of radius 1.
+    Tent,
+    /// A Gaussian of standard deviation 0.5 and radius 2 (Mitsuba's default).
+    Gaussian,
+    /// Mitchell–Netravali, B = C = 1/3, radius 2.
+    Mitchell,
+}
+
 /// `[render]`.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
@@ -128,6 +145,18 @@ pub struct RenderDesc {
     /// Quadtree: blocks of 2^aa_block pixels a side (default 3).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub aa_block: Option<Spanned<u32>>,
+    /// The reconstruction filter: `"box"` (default), `"tent"`, `"gaussian"`, `"mitchell"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub filter: Option<Spanned<FilterName>>,
+    /// The filter's radius in pixels (default: the filter's own).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub filter_radius: Option<Spanned<Finite>>,
+    /// Path: bounces before Russian roulette may end a path (default 5).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rr_depth: Option<Spanned<u32>>,
+    /// Stop after this many seconds, whatever the samples (uniform sampling).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_limit: Option<Spanned<Finite>>,
 }
 
 impl Default for RenderDesc {
@@ -144,6 +173,10 @@ impl Default for RenderDesc {
             aa_threshold: None,
             aa_depth: None,
             aa_block: None,
+            filter: None,
+            filter_radius: None,
+            rr_depth: None,
+            time_limit: None,
         }
     }
 }

@@ -16,7 +16,8 @@ use super::Convert;
 use super::transform;
 use super::xml::{Element, Loc};
 use crate::build::{MAX_DEPTH, MAX_IMAGE_SIDE, MAX_PIXELS, MAX_SAMPLES};
-use crate::desc::{CameraDesc, Finite, SceneDesc, Vector};
+use crate::desc::settings::FilterName;
+use crate::desc::{CameraDesc, Finite, IntegratorName, SceneDesc, Vector};
 use crate::error::LoadError;
 use glam::{DMat4, DVec3};
 use toml::Spanned;
@@ -159,6 +160,8 @@ pub fn read<'a>(
             if !FILTERS.contains(&r.kind) {
                 return Err(super::unknown_type(filter.el, r.kind));
             }
+            desc.render.filter = Some(Spanned::new(0..0, rfilter(&r, &filter.el.loc)?));
+            r.finish(&mut cx.warnings, &[]);
         }
         f.finish(
             &mut cx.warnings,
@@ -252,6 +255,8 @@ pub fn read<'a>(
             look_at: v(look_at)?,
             up: v(up)?,
             fov: Finite(fov_y as f32),
+            aperture: None,
+            focus_distance: None,
         },
     );
     desc.image.width = Spanned::new(0..0, width);
@@ -278,6 +283,38 @@ fn focal_fov((text, loc): (&str, &Loc)) -> Result<f64, LoadError> {
         * ((36.0f64 * 36.0 + 24.0 * 24.0).sqrt() / (2.0 * f))
             .atan()
             .to_degrees())
+}
+
+/// lucent's filter for the `<rfilter>` `r` (at `loc`): the same kind with Mitsuba's default
+/// parameters; other parameters, and the kinds lucent lacks, are approximated with a warning.
+fn rfilter(r: &super::props::Plugin, loc: &Loc) -> Result<FilterName, LoadError> {
+    let (name, defaults): (FilterName, &[(&str, f64)]) = match r.kind {
+        "box" => (FilterName::Box, &[("radius", 0.5)]),
+        "tent" => (FilterName::Tent, &[("radius", 1.0)]),
+        "gaussian" => (FilterName::Gaussian, &[("stddev", 0.5)]),
+        "mitchell" => (FilterName::Mitchell, &[("B", 1.0 / 3.0), ("C", 1.0 / 3.0)]),
+        other => {
+            r.warn(
+                loc,
+                format!("the `{other}` filter is rendered with lucent's Mitchell filter"),
+            );
+            return Ok(FilterName::Mitchell);
+        }
+    };
+    for &(key, default) in defaults {
+        if let Some(v) = r.float(key)?
+            && (v - default).abs() > 1e-6
+        {
+            r.warn(
+                loc,
+                format!(
+                    "the {} filter's `{key}` {v} is rendered as Mitsuba's default {default}",
+                    r.kind
+                ),
+            );
+        }
+    }
+    Ok(name)
 }
 
 /// Reads the `<integrator>` `el` into `desc`'s render settings: its `max_depth` (−1, Mitsuba's
@@ -308,7 +345,7 @@ pub fn integrator<'a>(
                 p.warn(
                     loc,
                     format!(
-                        "max_depth {depth}: Mitsuba renders {mitsuba}; lucent's Whitted integrator lights what the camera sees (its depth 0)"
+                        "max_depth {depth}: Mitsuba renders {mitsuba}; lucent's path integrator at its least depth (0) lights what the camera sees directly"
                     ),
                 );
             }
@@ -329,14 +366,18 @@ pub fn integrator<'a>(
             }
         }
     }
-    p.warn(
-        &el.loc,
-        format!(
-            "Mitsuba's `{}` integrator: lucent renders this scene with its Whitted integrator until it has a path tracer",
-            p.kind
-        ),
-    );
-    p.finish(&mut cx.warnings, &["rr_depth"]);
+    desc.render.integrator = IntegratorName::Path;
+    if p.kind == "direct" {
+        // Direct lighting only: what a path of at most two segments gathers.
+        desc.render.max_depth = Spanned::new(0..0, 0);
+    }
+    if let Some((rr, loc)) = p.integer("rr_depth")? {
+        let Ok(rr) = u32::try_from(rr) else {
+            return Err(loc.error(format!("rr_depth must be at least 0, not {rr}")));
+        };
+        desc.render.rr_depth = Some(Spanned::new(0..0, rr));
+    }
+    p.finish(&mut cx.warnings, &[]);
     Ok(())
 }
 

@@ -1,19 +1,23 @@
 //! Integrators: the colour seen along a ray.
 //!
-//! Contract: `radiance(scene, ray, stats)` returns the linear RGB radiance arriving at the
-//! ray's origin from direction `−ray.dir` (`ray.dir` of unit length), and counts the rays it
-//! traces into `stats`. It knows nothing of pixels or threads. To add one: a file with its
+//! Contract: `radiance(scene, ray, sampler, stats)` returns the linear RGB radiance arriving at
+//! the ray's origin from direction `−ray.dir` (`ray.dir` of unit length), and counts the rays
+//! it traces into `stats`; its random numbers come from `sampler` (the deterministic ones
+//! draw none). It knows nothing of pixels or threads. To add one: a file with its
 //! settings struct and `radiance`, a variant here, and its name in [`Integrator::name`].
 
 pub mod debug;
+pub mod path;
 pub mod raycast;
 pub mod record;
 pub mod whitted;
 
 pub use debug::DebugView;
+pub use path::PathTracer;
 pub use whitted::Whitted;
 
 use crate::Rgb;
+use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
 use lucent_accel::{Ray, TraversalStats};
 
@@ -61,6 +65,8 @@ pub enum Integrator {
     Whitted(Whitted),
     /// A debug view of what the camera ray finds.
     Debug(DebugView),
+    /// Path tracing with next-event estimation and MIS: global illumination.
+    Path(PathTracer),
 }
 
 impl Default for Integrator {
@@ -76,16 +82,30 @@ impl Integrator {
             Integrator::Raycast => "raycast",
             Integrator::Whitted(_) => "whitted",
             Integrator::Debug(view) => view.name(),
+            Integrator::Path(_) => "path",
         }
+    }
+
+    /// True when the integrator draws random numbers: its samples differ, and only their mean
+    /// converges (adaptive supersampling needs one that does not).
+    pub fn is_stochastic(&self) -> bool {
+        matches!(self, Integrator::Path(_))
     }
 
     /// Radiance along `ray`; see the module's contract.
     #[inline]
-    pub fn radiance(&self, scene: &Scene, ray: &Ray, stats: &mut RayStats) -> Rgb {
+    pub fn radiance(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        stats: &mut RayStats,
+    ) -> Rgb {
         match self {
             Integrator::Raycast => raycast::radiance(scene, ray, stats),
             Integrator::Whitted(w) => w.radiance(scene, ray, stats),
             Integrator::Debug(view) => debug::radiance(*view, scene, ray, stats),
+            Integrator::Path(p) => p.radiance(scene, ray, sampler, stats),
         }
     }
 }

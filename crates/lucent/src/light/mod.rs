@@ -1,12 +1,20 @@
-//! Light sources: points and directions.
+//! Light sources: points and directions ([`Light`]), and for the path tracer also area lights
+//! and the environment, sampled together through [`Emitters`].
 //!
 //! A light answers, for a point being shaded, where it is (direction and distance) and how
 //! much it delivers there ([`LightSample`]). To add a kind: a file with its struct and
 //! `illuminate`, a variant here, and its scene-file keys.
 
+pub mod area;
 pub mod directional;
+pub mod emitters;
+pub mod environment;
 pub mod point;
 pub mod spot;
+
+pub use area::{AreaLights, EmitterSample};
+pub use emitters::Emitters;
+pub use environment::EnvironmentLight;
 
 pub use directional::DirectionalLight;
 pub use point::{Falloff, PointLight};

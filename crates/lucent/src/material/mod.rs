@@ -1,10 +1,58 @@
 //! Materials: one description that every integrator reads.
 //!
 //! The classic coefficients of the Whitted model (see [`crate::integrator::whitted`]):
-//! `I = ka·Ia + Σ_j S_j·I_j·att_j·(kd·max(N·L, 0) + ks·max(R·V, 0)^shininess) + kr·Ir + kt·It`.
+//! `I = ka·Ia + Σ_j S_j·I_j·att_j·(kd·max(N·L, 0) + ks·max(R·V, 0)^shininess) + kr·Ir + kt·It`,
+//! and the physically based [`Surface`] that the path tracer samples. A scene file's material
+//! sets both: a `whitted` material's surface is [`Surface::Classic`] (its coefficients read as
+//! lobes, [`crate::bsdf::Bsdf::Classic`]), and a physically based one carries the classic
+//! coefficients nearest to it for the Whitted integrator.
 
 use crate::Rgb;
+use crate::bsdf::Bsdf;
 use crate::texture::Texture;
+
+/// The physically based description of a surface, read by the path tracer. Diffuse colours
+/// come from the material's `kd` texture (evaluated at the hit).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Surface {
+    /// The classic coefficients as lobes: Lambert `kd`, normalised Phong `ks`/`shininess`,
+    /// mirror `kr`, refraction `kt` with `ior`.
+    #[default]
+    Classic,
+    /// Lambertian, albedo `kd`.
+    Diffuse,
+    /// A metal of complex index `eta + i·k`; `alpha` is the GGX roughness (0: smooth).
+    Conductor {
+        /// Real part of the index of refraction, per channel.
+        eta: Rgb,
+        /// Extinction coefficient, per channel.
+        k: Rgb,
+        /// Tint of the reflection.
+        specular: Rgb,
+        /// GGX roughness; 0 for a smooth mirror.
+        alpha: f32,
+    },
+    /// Glass: relative index `eta` (inside over outside); `alpha` as for conductors.
+    Dielectric {
+        /// Index of the inside relative to the outside.
+        eta: f32,
+        /// Tint of the reflection.
+        specular: Rgb,
+        /// Tint of the transmission.
+        transmittance: Rgb,
+        /// GGX roughness; 0 for smooth glass.
+        alpha: f32,
+    },
+    /// A diffuse base `kd` under a dielectric coat of relative index `eta`.
+    Plastic {
+        /// Index of the coat relative to the outside.
+        eta: f32,
+        /// Tint of the coat's reflection.
+        specular: Rgb,
+        /// GGX roughness of the coat; 0 for a smooth coat.
+        alpha: f32,
+    },
+}
 
 /// A surface's response to light, per RGB channel.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,6 +74,11 @@ pub struct Material {
     /// Radiance the surface emits from its front side (an area light); added to what it
     /// reflects.
     pub ke: Rgb,
+    /// The physically based description the path tracer samples.
+    pub surface: Surface,
+    /// Whether the back of the surface scatters light as its front does (the path tracer;
+    /// Whitted lights both sides). One-sided reflecting surfaces are black from behind.
+    pub two_sided: bool,
 }
 
 impl Default for Material {
@@ -40,6 +93,8 @@ impl Default for Material {
             kt: Rgb::BLACK,
             ior: 1.0,
             ke: Rgb::BLACK,
+            surface: Surface::Classic,
+            two_sided: true,
         }
     }
 }
@@ -50,6 +105,69 @@ impl Material {
         Self {
             kd: Texture::Solid(kd),
             ..Self::default()
+        }
+    }
+
+    /// The BSDF at a surface point whose diffuse colour (`kd` evaluated there) is `kd`.
+    pub fn bsdf(&self, kd: Rgb) -> Bsdf {
+        match self.surface {
+            Surface::Classic => Bsdf::Classic {
+                kd,
+                ks: self.ks,
+                shininess: self.shininess,
+                kr: self.kr,
+                kt: self.kt,
+                eta: self.ior,
+            },
+            Surface::Diffuse => Bsdf::Lambert { albedo: kd },
+            Surface::Conductor {
+                eta,
+                k,
+                specular,
+                alpha,
+            } => {
+                if alpha > 0.0 {
+                    Bsdf::RoughConductor {
+                        eta,
+                        k,
+                        specular,
+                        alpha,
+                    }
+                } else {
+                    Bsdf::Conductor { eta, k, specular }
+                }
+            }
+            Surface::Dielectric {
+                eta,
+                specular,
+                transmittance,
+                alpha,
+            } => {
+                if alpha > 0.0 {
+                    Bsdf::RoughDielectric {
+                        eta,
+                        specular,
+                        transmittance,
+                        alpha,
+                    }
+                } else {
+                    Bsdf::Dielectric {
+                        eta,
+                        specular,
+                        transmittance,
+                    }
+                }
+            }
+            Surface::Plastic {
+                eta,
+                specular,
+                alpha,
+            } => Bsdf::Plastic {
+                diffuse: kd,
+                eta,
+                specular,
+                alpha,
+            },
         }
     }
 }

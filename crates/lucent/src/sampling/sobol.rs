@@ -59,17 +59,39 @@ fn sobol_0(index: u32) -> u32 {
 /// Sobol's second dimension as a 32-bit fraction: the xor of the matrix columns of the set
 /// bits of `index`.
 #[inline]
-fn sobol_1(mut index: u32) -> u32 {
-    let mut x = 0;
-    let mut j = 0;
-    while index != 0 {
-        if index & 1 != 0 {
-            x ^= SOBOL_1_MATRIX[j];
+fn sobol_1(index: u32) -> u32 {
+    // The matrix is linear over GF(2): the xor of one table entry per byte of the index,
+    // branch-free (a scrambled index has all 32 bits in play).
+    let t = &SOBOL_1_BYTES;
+    t[0][(index & 0xff) as usize]
+        ^ t[1][((index >> 8) & 0xff) as usize]
+        ^ t[2][((index >> 16) & 0xff) as usize]
+        ^ t[3][(index >> 24) as usize]
+}
+
+/// [`sobol_1`] of every byte value in each of the four byte positions.
+static SOBOL_1_BYTES: [[u32; 256]; 4] = sobol_1_bytes();
+
+const fn sobol_1_bytes() -> [[u32; 256]; 4] {
+    let mut t = [[0u32; 256]; 4];
+    let mut byte = 0;
+    while byte < 4 {
+        let mut v = 0;
+        while v < 256 {
+            let mut x = 0;
+            let mut bit = 0;
+            while bit < 8 {
+                if v & (1 << bit) != 0 {
+                    x ^= SOBOL_1_MATRIX[byte * 8 + bit];
+                }
+                bit += 1;
+            }
+            t[byte][v] = x;
+            v += 1;
         }
-        index >>= 1;
-        j += 1;
+        byte += 1;
     }
-    x
+    t
 }
 
 /// A key-dependent bijection of 32-bit words in which bit `b` of the output is bit `b` of the
@@ -121,8 +143,8 @@ fn fraction_to_float(x: u32) -> f32 {
 /// are decorrelated. Any sample count may be used; powers of two are stratified best.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Sampler {
-    seed: u64,
-    pixel: u64,
+    /// A hash of `(seed, pixel)`, computed once: each draw's keys then cost one mix.
+    pixel_key: u64,
     index: u32,
     dimension: u32,
 }
@@ -132,8 +154,7 @@ impl Sampler {
     /// image, e.g. `y · width + x`) in a render with random seed `seed`, at its first dimension.
     pub fn new(seed: u64, pixel: u64, index: u32) -> Self {
         Self {
-            seed,
-            pixel,
+            pixel_key: hash(seed, pixel, u32::MAX, u32::MAX) ^ KEY_SALT,
             index,
             dimension: 0,
         }
@@ -148,7 +169,8 @@ impl Sampler {
     /// pixel, so that the samples are scrambled together and stay a net.
     #[inline]
     fn key(&self, role: u32) -> u64 {
-        mix64(hash(self.seed, self.pixel, self.dimension, role) ^ KEY_SALT)
+        let draw = (u64::from(self.dimension) << 2) | u64::from(role);
+        mix64(self.pixel_key ^ draw.wrapping_mul(0x9e37_79b9_7f4a_7c15))
     }
 
     /// The current draw's shuffled sample index.

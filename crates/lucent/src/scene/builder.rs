@@ -3,7 +3,7 @@
 use super::{MeshAccel, MeshEntry, ObjectTag, Scene};
 use crate::Rgb;
 use crate::camera::Camera;
-use crate::light::Light;
+use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
 use crate::material::Material;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, Transform, TriangleTest};
 use crate::texture::ImageTexture;
@@ -333,6 +333,19 @@ impl SceneBuilder {
         let accel = kind.build(&boxes);
         let build_time = start.elapsed();
         let bounds = boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x));
+        let emitters = emitters(
+            &self.materials,
+            &self.spheres,
+            &meshes,
+            &instances,
+            EnvironmentSource {
+                background: self.background,
+                image: self.environment.map(|i| &self.images[i as usize]),
+            },
+            &self.lights,
+            self.objects,
+            bounds,
+        );
         Ok(Scene {
             camera: self.camera,
             background: self.background,
@@ -351,6 +364,66 @@ impl SceneBuilder {
             bounds,
             triangle_test: self.triangle_test,
             build_time,
+            emitters,
         })
     }
+}
+
+/// What rays that miss the scene see: the environment light of the path tracer.
+struct EnvironmentSource<'a> {
+    background: Rgb,
+    image: Option<&'a ImageTexture>,
+}
+
+/// The lights of the path tracer: every emitting sphere and mesh instance (in world space),
+/// the environment, and the point-like `lights`.
+#[allow(clippy::too_many_arguments)]
+fn emitters(
+    materials: &[Material],
+    spheres: &[(Sphere, ObjectTag)],
+    meshes: &[MeshEntry],
+    instances: &[(Instance, ObjectTag)],
+    environment: EnvironmentSource,
+    lights: &[Light],
+    objects: u32,
+    bounds: Aabb,
+) -> Emitters {
+    let emits = |tag: &ObjectTag| {
+        let ke = materials[tag.material as usize].ke;
+        (!ke.is_black()).then_some(ke)
+    };
+    let mut area = AreaLights::default();
+    for (s, tag) in spheres {
+        if let Some(ke) = emits(tag) {
+            area.add_sphere(tag.object, ke, s.center, s.radius);
+        }
+    }
+    for (inst, tag) in instances {
+        let Some(ke) = emits(tag) else { continue };
+        let mesh = &meshes[inst.mesh as usize].mesh;
+        // A mirroring placement reverses the winding; the front side stays the front.
+        let mirrored = inst
+            .transform
+            .is_some_and(|t| t.to_world().matrix3.determinant() < 0.0);
+        let triangles: Vec<[glam::Vec3; 3]> = (0..mesh.triangles.len() as u32)
+            .map(|t| {
+                let v = mesh.vertices(t);
+                let [a, b, c] = inst
+                    .transform
+                    .map_or(v, |tr| v.map(|p| tr.point_to_world(p)));
+                if mirrored { [a, c, b] } else { [a, b, c] }
+            })
+            .collect();
+        area.add_triangles(tag.object, ke, &triangles);
+    }
+    let environment = match environment.image {
+        Some(image) => EnvironmentLight::image(image),
+        None => EnvironmentLight::constant(environment.background),
+    };
+    let radius = if bounds.is_empty() {
+        1.0
+    } else {
+        0.5 * (bounds.max - bounds.min).length()
+    };
+    Emitters::new(lights, area, environment, objects, radius)
 }

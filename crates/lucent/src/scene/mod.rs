@@ -18,7 +18,7 @@ pub use builder::{SceneBuilder, SceneError};
 
 use crate::Rgb;
 use crate::camera::Camera;
-use crate::light::Light;
+use crate::light::{Emitters, Light};
 use crate::material::Material;
 use crate::shape::SurfaceHit;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, TriangleTest};
@@ -97,6 +97,8 @@ pub struct Scene {
     bounds: Aabb,
     triangle_test: TriangleTest,
     build_time: Duration,
+    /// The lights as the path tracer samples them (area lights and the environment too).
+    pub emitters: Emitters,
 }
 
 /// Counts of what a scene holds, for `lucent info` and statistics.

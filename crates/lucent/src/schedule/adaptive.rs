@@ -28,6 +28,7 @@
 
 use crate::color::Rgb;
 use crate::integrator::{Integrator, RayStats};
+use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -193,7 +194,11 @@ impl BandCorners<'_> {
         let step = (1u32 << self.adaptive.depth) as f32;
         let ray = self.scene.camera.ray(i as f32 / step, j as f32 / step);
         stats.camera += 1;
-        let value = self.integrator.radiance(self.scene, &ray, stats);
+        // Adaptive sampling takes deterministic integrators only; the sampler is for the type.
+        let mut sampler = Sampler::new(0, (u64::from(j) << 32) | u64::from(i), 0);
+        let value = self
+            .integrator
+            .radiance(self.scene, &ray, &mut sampler, stats);
         if value.is_finite() {
             value
         } else {
