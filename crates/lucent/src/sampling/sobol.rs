@@ -49,13 +49,6 @@ const fn sobol_1_matrix() -> [u32; 32] {
     columns
 }
 
-/// Sobol's first dimension as a 32-bit fraction: the identity matrix, i.e. the bit-reversed
-/// index (the van der Corput sequence).
-#[inline]
-fn sobol_0(index: u32) -> u32 {
-    index.reverse_bits()
-}
-
 /// Sobol's second dimension as a 32-bit fraction: the xor of the matrix columns of the set
 /// bits of `index`.
 #[inline]
@@ -184,7 +177,9 @@ impl Sampler {
     /// The next value in [0,1), dimension by dimension.
     pub fn next_1d(&mut self) -> f32 {
         let i = self.shuffled_index();
-        let x = owen_scramble(sobol_0(i), self.key(1));
+        // Sobol's first dimension is the bit-reversed index (van der Corput); Owen-scrambling
+        // it reverses it again, so the two reversals cancel: scramble `i` itself.
+        let x = laine_karras_permute(i, self.key(1)).reverse_bits();
         self.dimension = self.dimension.wrapping_add(1);
         fraction_to_float(x)
     }
@@ -193,7 +188,7 @@ impl Sampler {
     /// (0,2)-sequence in its two dimensions).
     pub fn next_2d(&mut self) -> Vec2 {
         let i = self.shuffled_index();
-        let x = owen_scramble(sobol_0(i), self.key(1));
+        let x = laine_karras_permute(i, self.key(1)).reverse_bits();
         let y = owen_scramble(sobol_1(i), self.key(2));
         self.dimension = self.dimension.wrapping_add(2);
         Vec2::new(fraction_to_float(x), fraction_to_float(y))

@@ -1,6 +1,6 @@
 //! Collecting a scene's parts, checking them, and building the accelerators.
 
-use super::{MeshAccel, MeshEntry, ObjectTag, Scene};
+use super::{Merged, MeshAccel, MeshEntry, ObjectTag, Scene};
 use crate::Rgb;
 use crate::camera::Camera;
 use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
@@ -288,20 +288,46 @@ impl SceneBuilder {
         self.check()?;
         let start = Instant::now();
         let kind = self.accelerator;
+        let packed = kind == AccelKind::Wide && self.triangle_test == TriangleTest::Watertight;
+        let mesh_accel = |mesh: &Mesh| -> MeshAccel {
+            if packed {
+                return MeshAccel::Packed(WideTriangleBvh::new(&mesh.positions, &mesh.triangles));
+            }
+            let boxes: Vec<Aabb> = (0..mesh.triangles.len() as u32)
+                .map(|t| mesh.triangle_bounds(t))
+                .collect();
+            MeshAccel::Generic(kind.build(&boxes))
+        };
+        // Placements merged into one world-space mesh: of meshes placed once, and of small
+        // ones (where the second level costs more than the copy).
+        let mut placements = vec![0u32; self.meshes.len()];
+        for &(mesh, _, _) in &self.instances {
+            placements[mesh as usize] += 1;
+        }
+        let merge: Vec<bool> = self
+            .instances
+            .iter()
+            .map(|&(mesh, _, _)| {
+                placements[mesh as usize] == 1
+                    || self.meshes[mesh as usize].triangles.len() <= MERGE_TRIANGLES
+            })
+            .collect();
+        let mut kept = vec![false; self.meshes.len()];
+        for (&(mesh, _, _), &m) in self.instances.iter().zip(&merge) {
+            kept[mesh as usize] |= !m;
+        }
         let meshes: Vec<MeshEntry> = self
             .meshes
             .into_iter()
-            .map(|mesh| {
-                let boxes: Vec<Aabb> = (0..mesh.triangles.len() as u32)
-                    .map(|t| mesh.triangle_bounds(t))
-                    .collect();
-                let bounds = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(*b));
-                let accel =
-                    if kind == AccelKind::Wide && self.triangle_test == TriangleTest::Watertight {
-                        MeshAccel::Packed(WideTriangleBvh::new(&mesh.positions, &mesh.triangles))
-                    } else {
-                        MeshAccel::Generic(kind.build(&boxes))
-                    };
+            .zip(&kept)
+            .map(|(mesh, &kept)| {
+                let bounds = (0..mesh.triangles.len() as u32)
+                    .fold(Aabb::EMPTY, |a, t| a.union(mesh.triangle_bounds(t)));
+                let accel = if kept {
+                    mesh_accel(&mesh)
+                } else {
+                    MeshAccel::Unused
+                };
                 MeshEntry {
                     accel,
                     bounds,
@@ -318,6 +344,7 @@ impl SceneBuilder {
             };
             instances.push((Instance { mesh, transform }, tag));
         }
+        let merged = merged(&meshes, &instances, &merge, mesh_accel)?;
 
         let mut primitives = Vec::with_capacity(self.spheres.len() + instances.len());
         let mut boxes = Vec::with_capacity(primitives.capacity());
@@ -326,9 +353,16 @@ impl SceneBuilder {
             boxes.push(s.bounds());
         }
         for (i, (inst, _)) in instances.iter().enumerate() {
+            if merge[i] {
+                continue;
+            }
             primitives.push(Primitive::Instance(i as u32));
             let local = meshes[inst.mesh as usize].bounds;
             boxes.push(inst.transform.map_or(local, |t| t.bounds_to_world(local)));
+        }
+        if let Some(m) = &merged {
+            primitives.push(Primitive::Merged);
+            boxes.push(m.entry.bounds);
         }
         let accel = kind.build(&boxes);
         let build_time = start.elapsed();
@@ -358,6 +392,7 @@ impl SceneBuilder {
             planes: self.planes,
             meshes,
             instances,
+            merged,
             objects: self.objects,
             primitives,
             accel,
@@ -367,6 +402,63 @@ impl SceneBuilder {
             emitters,
         })
     }
+}
+
+/// Meshes of at most this many triangles are merged into world space wherever they are placed.
+const MERGE_TRIANGLES: usize = 64;
+
+/// The world-space mesh of the instances marked in `merge` (in instance order), with its
+/// accelerator from `accel`; `None` when none is.
+fn merged(
+    meshes: &[MeshEntry],
+    instances: &[(Instance, ObjectTag)],
+    merge: &[bool],
+    accel: impl Fn(&Mesh) -> MeshAccel,
+) -> Result<Option<Merged>, SceneError> {
+    if !merge.contains(&true) {
+        return Ok(None);
+    }
+    let mut world = Mesh::default();
+    let mut owner = Vec::new();
+    let mut first = vec![u32::MAX; instances.len()];
+    for (k, ((inst, _), _)) in instances
+        .iter()
+        .zip(merge)
+        .enumerate()
+        .filter(|(_, (_, m))| **m)
+    {
+        let mesh = &meshes[inst.mesh as usize].mesh;
+        let base = world.positions.len();
+        if base + mesh.positions.len() > u32::MAX as usize
+            || owner.len() + mesh.triangles.len() > u32::MAX as usize
+        {
+            return Err(SceneError::TooManyPrimitives(
+                owner.len() + mesh.triangles.len(),
+            ));
+        }
+        first[k] = owner.len() as u32;
+        world.positions.extend(
+            mesh.positions
+                .iter()
+                .map(|&p| inst.transform.map_or(p, |t| t.point_to_world(p))),
+        );
+        let base = base as u32;
+        world
+            .triangles
+            .extend(mesh.triangles.iter().map(|t| t.map(|v| v + base)));
+        owner.extend(std::iter::repeat_n(k as u32, mesh.triangles.len()));
+    }
+    let bounds = (0..world.triangles.len() as u32)
+        .fold(Aabb::EMPTY, |a, t| a.union(world.triangle_bounds(t)));
+    Ok(Some(Merged {
+        entry: MeshEntry {
+            accel: accel(&world),
+            bounds,
+            mesh: world,
+        },
+        owner,
+        first,
+    }))
 }
 
 /// What rays that miss the scene see: the environment light of the path tracer.

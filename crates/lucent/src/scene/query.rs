@@ -13,8 +13,9 @@ use lucent_accel::{Accelerator, Ray, TraversalStats};
 enum Candidate {
     Plane(u32, f32),
     Sphere(u32, f32),
-    /// Instance, triangle, hit and vertices in the instance's object space.
-    Triangle(u32, u32, TriangleHit, [Vec3; 3]),
+    /// Instance, triangle, hit and vertices in the instance's object space — or in world space
+    /// for a merged instance (the last field true).
+    Triangle(u32, u32, TriangleHit, [Vec3; 3], bool),
 }
 
 /// The running nearest hit, with the tie rule: at equal `t`, the lower key wins, and planes
@@ -86,6 +87,39 @@ fn leaving_triangle(from: Option<Leaving>, k: u32) -> Option<u32> {
     }
 }
 
+/// The merged triangle that `from` leaves, if any.
+#[inline]
+fn merged_skip(m: &super::Merged, from: Option<Leaving>) -> Option<u32> {
+    match from?.surface {
+        SurfaceId::Triangle { instance, index } => m.index(instance, index),
+        _ => None,
+    }
+}
+
+/// Calls `blocker(triangle)` for the triangles of `entry` on `local` (the ray in the mesh's
+/// space) in `(0, t_max)` until it returns `true`; returns whether it did.
+fn blockers_in<F>(
+    entry: &super::MeshEntry,
+    local: &Ray,
+    test: crate::shape::TriangleTest,
+    t_max: f32,
+    stats: &mut TraversalStats,
+    mut blocker: F,
+) -> bool
+where
+    F: FnMut(u32) -> bool,
+{
+    match &entry.accel {
+        MeshAccel::Generic(accel) => accel.any_hit(local, t_max, stats, |tri| {
+            test.intersect(local, entry.mesh.vertices(tri), t_max)
+                .is_some()
+                && blocker(tri)
+        }),
+        MeshAccel::Packed(packed) => packed.any_hit(local, t_max, stats, blocker),
+        MeshAccel::Unused => false,
+    }
+}
+
 impl Scene {
     /// The nearest surface along `ray` (`t > 0`), if any.
     pub fn intersect(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
@@ -118,7 +152,8 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        self.accel.closest_hit(ray, nearest.t, stats, |p, t_max| {
+        let t_max = nearest.t;
+        let leaf = |p: u32, t_max: &mut f32| {
             let found = match self.primitives[p as usize] {
                 Primitive::Sphere(i) => {
                     let sphere = &self.spheres[i as usize].0;
@@ -129,24 +164,38 @@ impl Scene {
                 }
                 Primitive::Instance(k) => {
                     let skip = leaving_triangle(from, k);
-                    self.nearest_in_instance(p, k, ray, *t_max, skip, &mut nearest, &mut mesh_stats)
+                    self.nearest_in_instance(k, ray, *t_max, skip, &mut nearest, &mut mesh_stats)
+                }
+                Primitive::Merged => {
+                    self.nearest_in_merged(ray, *t_max, from, &mut nearest, &mut mesh_stats)
                 }
             };
             if found {
                 *t_max = nearest.t;
             }
             found
-        });
+        };
+        // One top-level primitive (a scene merged into one mesh) needs no top level.
+        if let [_] = self.primitives.as_slice() {
+            let mut leaf = leaf;
+            leaf(0, &mut { t_max });
+        } else {
+            self.accel.closest_hit(ray, t_max, stats, leaf);
+        }
         *stats += mesh_stats;
         nearest.candidate.map(|c| self.surface(ray, c))
     }
 
-    /// Offers the hits of instance `k` (top-level primitive `p`) nearer than `t_max` (or tied
-    /// with it) to `nearest`, leaving out triangle `skip`; returns whether one was taken.
-    #[allow(clippy::too_many_arguments)]
+    /// The tie key of triangle `tri` of instance `k`: instances after the spheres, in order.
+    #[inline]
+    fn triangle_key(&self, k: u32, tri: u32) -> (u32, u32) {
+        (self.spheres.len() as u32 + k, tri)
+    }
+
+    /// Offers the hits of instance `k` nearer than `t_max` (or tied with it) to `nearest`,
+    /// leaving out triangle `skip`; returns whether one was taken.
     fn nearest_in_instance(
         &self,
-        p: u32,
         k: u32,
         ray: &Ray,
         t_max: f32,
@@ -157,6 +206,7 @@ impl Scene {
         let instance = &self.instances[k as usize].0;
         let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
         let entry = &self.meshes[instance.mesh as usize];
+        let key = |tri| self.triangle_key(k, tri);
         match &entry.accel {
             MeshAccel::Generic(accel) => accel.closest_hit(&local, t_max, stats, |tri, tm| {
                 if skip == Some(tri) {
@@ -165,7 +215,11 @@ impl Scene {
                 let v = entry.mesh.vertices(tri);
                 match self.triangle_test.intersect(&local, v, inclusive(*tm)) {
                     Some(hit)
-                        if nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit, v)) =>
+                        if nearest.offer(
+                            hit.t,
+                            key(tri),
+                            Candidate::Triangle(k, tri, hit, v, false),
+                        ) =>
                     {
                         *tm = hit.t;
                         true
@@ -175,10 +229,50 @@ impl Scene {
             }),
             MeshAccel::Packed(packed) => match packed.closest_hit(&local, t_max, skip, stats) {
                 Some((tri, hit, v)) => {
-                    nearest.offer(hit.t, (p, tri), Candidate::Triangle(k, tri, hit, v))
+                    nearest.offer(hit.t, key(tri), Candidate::Triangle(k, tri, hit, v, false))
                 }
                 None => false,
             },
+            MeshAccel::Unused => false,
+        }
+    }
+
+    /// Offers the hits of the merged instances nearer than `t_max` (or tied with it) to
+    /// `nearest`, leaving out the triangle `from` leaves; returns whether one was taken.
+    fn nearest_in_merged(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        from: Option<Leaving>,
+        nearest: &mut Nearest,
+        stats: &mut TraversalStats,
+    ) -> bool {
+        let Some(m) = &self.merged else { return false };
+        let skip = merged_skip(m, from);
+        let mut offer = |i: u32, hit: TriangleHit, v: [Vec3; 3]| {
+            let (k, tri) = m.source(i);
+            let candidate = Candidate::Triangle(k, tri, hit, v, true);
+            nearest.offer(hit.t, self.triangle_key(k, tri), candidate)
+        };
+        match &m.entry.accel {
+            MeshAccel::Generic(accel) => accel.closest_hit(ray, t_max, stats, |i, tm| {
+                if skip == Some(i) {
+                    return false;
+                }
+                let v = m.entry.mesh.vertices(i);
+                match self.triangle_test.intersect(ray, v, inclusive(*tm)) {
+                    Some(hit) if offer(i, hit, v) => {
+                        *tm = hit.t;
+                        true
+                    }
+                    _ => false,
+                }
+            }),
+            MeshAccel::Packed(packed) => match packed.closest_hit(ray, t_max, skip, stats) {
+                Some((i, hit, v)) => offer(i, hit, v),
+                None => false,
+            },
+            MeshAccel::Unused => false,
         }
     }
 
@@ -224,15 +318,18 @@ impl Scene {
                     error: gamma(6) * (sphere.center.abs() + (point - sphere.center).abs()),
                 }
             }
-            Candidate::Triangle(k, tri, hit, v) => {
+            Candidate::Triangle(k, tri, hit, v, world) => {
                 let (instance, tag) = &self.instances[k as usize];
-                let local_point = hit.point(v);
+                let mesh = &self.meshes[instance.mesh as usize].mesh;
+                // Point and error from the vertices the ray met; normals from the object's
+                // own, so that they keep their side under a mirroring placement.
+                let object = if world { mesh.vertices(tri) } else { v };
+                let here = hit.point(v);
                 let [b0, b1, b2] = hit.bary;
-                let local_error =
+                let here_error =
                     gamma(7) * ((b0 * v[0]).abs() + (b1 * v[1]).abs() + (b2 * v[2]).abs());
                 // A triangle that was hit has an area, so its normal exists.
-                let local_normal = triangle::normal(v).unwrap_or(Vec3::Z);
-                let mesh = &self.meshes[instance.mesh as usize].mesh;
+                let local_normal = triangle::normal(object).unwrap_or(Vec3::Z);
                 let corners = mesh.triangles[tri as usize].map(|i| i as usize);
                 let local_shading = if mesh.normals.is_empty() {
                     local_normal
@@ -264,14 +361,18 @@ impl Scene {
                         .zip(hit.bary)
                         .fold(Rgb::BLACK, |a, (&i, b)| a + mesh.colors[i] * b)
                 };
-                let (point, normal, shading_normal, error) = match instance.transform {
+                let (point, error) = match instance.transform {
+                    Some(t) if !world => {
+                        (t.point_to_world(here), t.error_to_world(here, here_error))
+                    }
+                    _ => (here, here_error),
+                };
+                let (normal, shading_normal) = match instance.transform {
                     Some(t) => (
-                        t.point_to_world(local_point),
                         t.normal_to_world(local_normal),
                         t.normal_to_world(local_shading),
-                        t.error_to_world(local_point, local_error),
                     ),
-                    None => (local_point, local_normal, local_shading, local_error),
+                    None => (local_normal, local_shading),
                 };
                 SurfaceHit {
                     t: hit.t,
@@ -319,25 +420,45 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let blocked =
-            self.accel
-                .any_hit(ray, t_max, stats, |p| match self.primitives[p as usize] {
-                    Primitive::Sphere(i) => {
-                        let (sphere, tag) = &self.spheres[i as usize];
-                        let crossings = match leaving_sphere(from, i) {
-                            None => sphere.crossings(ray, t_max),
-                            leaving => u32::from(sphere_hit(sphere, ray, t_max, leaving).is_some()),
-                        };
-                        crossings > 0 && blocker(tag.material, crossings)
-                    }
-                    Primitive::Instance(k) => {
-                        let material = self.instances[k as usize].1.material;
-                        let skip = leaving_triangle(from, k);
-                        self.blockers_in_instance(k, ray, t_max, &mut mesh_stats, |tri| {
-                            skip != Some(tri) && blocker(material, 1)
-                        })
-                    }
-                });
+        let leaf = |p: u32| match self.primitives[p as usize] {
+            Primitive::Sphere(i) => {
+                let (sphere, tag) = &self.spheres[i as usize];
+                let crossings = match leaving_sphere(from, i) {
+                    None => sphere.crossings(ray, t_max),
+                    leaving => u32::from(sphere_hit(sphere, ray, t_max, leaving).is_some()),
+                };
+                crossings > 0 && blocker(tag.material, crossings)
+            }
+            Primitive::Instance(k) => {
+                let material = self.instances[k as usize].1.material;
+                let skip = leaving_triangle(from, k);
+                self.blockers_in_instance(k, ray, t_max, &mut mesh_stats, |tri| {
+                    skip != Some(tri) && blocker(material, 1)
+                })
+            }
+            Primitive::Merged => {
+                let Some(m) = &self.merged else { return false };
+                let skip = merged_skip(m, from);
+                let blocked = |i: u32| {
+                    let k = m.owner[i as usize];
+                    skip != Some(i) && blocker(self.instances[k as usize].1.material, 1)
+                };
+                blockers_in(
+                    &m.entry,
+                    ray,
+                    self.triangle_test,
+                    t_max,
+                    &mut mesh_stats,
+                    blocked,
+                )
+            }
+        };
+        let blocked = if let [_] = self.primitives.as_slice() {
+            let mut leaf = leaf;
+            leaf(0)
+        } else {
+            self.accel.any_hit(ray, t_max, stats, leaf)
+        };
         *stats += mesh_stats;
         blocked
     }
@@ -350,7 +471,7 @@ impl Scene {
         ray: &Ray,
         t_max: f32,
         stats: &mut TraversalStats,
-        mut blocker: F,
+        blocker: F,
     ) -> bool
     where
         F: FnMut(u32) -> bool,
@@ -358,15 +479,7 @@ impl Scene {
         let instance = &self.instances[k as usize].0;
         let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
         let entry = &self.meshes[instance.mesh as usize];
-        match &entry.accel {
-            MeshAccel::Generic(accel) => accel.any_hit(&local, t_max, stats, |tri| {
-                self.triangle_test
-                    .intersect(&local, entry.mesh.vertices(tri), t_max)
-                    .is_some()
-                    && blocker(tri)
-            }),
-            MeshAccel::Packed(packed) => packed.any_hit(&local, t_max, stats, blocker),
-        }
+        blockers_in(entry, &local, self.triangle_test, t_max, stats, blocker)
     }
 
     /// True when anything lies on `ray` in `(0, t_max)`.

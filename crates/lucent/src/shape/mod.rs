@@ -26,6 +26,8 @@ pub enum Primitive {
     Sphere(u32),
     /// `Scene::instances[i]`: a placed mesh, with an accelerator of its own over its triangles.
     Instance(u32),
+    /// The instances stored together in world space (see the scene's module docs).
+    Merged,
 }
 
 /// What a ray hit, and the surface there.
