@@ -144,10 +144,23 @@ pub struct Overrides {
     /// `tent`, `gaussian` (σ 0.5, radius 2) or `mitchell`.
     #[arg(long, value_enum)]
     pub filter: Option<FilterArg>,
+    /// How a filter other than the box weighs samples: `splat` (into every pixel it reaches,
+    /// the default: less noise) or `importance` (into their own pixel; shards need it).
+    #[arg(long, value_enum)]
+    pub filter_sampling: Option<FilterSamplingArg>,
     /// Stop after this many seconds (uniform sampling); without --spp the samples are then
     /// unbounded, with it whichever comes first ends the render.
     #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
     pub time_limit: Option<f64>,
+}
+
+/// How filters weigh samples, on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FilterSamplingArg {
+    /// Into every pixel the filter reaches.
+    Splat,
+    /// Into their own pixel, placed in proportion to the filter.
+    Importance,
 }
 
 /// Reconstruction filters selectable on the command line.

@@ -120,6 +120,7 @@ fn sphere_field() -> String {
 struct Shot {
     name: &'static str,
     caption: &'static str,
+    /// The scene file under `scenes/`, or the built-in scene.
     scene: Option<&'static str>,
     flags: &'static [&'static str],
 }
@@ -170,43 +171,43 @@ const SHOTS: &[Shot] = &[
     Shot {
         name: "refraction",
         caption: "Refraction by Snell's law: the checkered wall seen through a glass ball (ior 1.5), upside down.",
-        scene: Some("refraction"),
+        scene: Some("refraction.toml"),
         flags: &[],
     },
     Shot {
         name: "tir",
         caption: "Total internal reflection: from under a glass surface, the sky through Snell's window (within 41.8° of the normal) and the floor mirrored around it.",
-        scene: Some("tir"),
+        scene: Some("tir.toml"),
         flags: &[],
     },
     Shot {
         name: "cost-brute",
         caption: "Cost map, brute force: every ray tests every one of the 400 balls — one flat colour.",
-        scene: Some("sphere-field"),
+        scene: Some("sphere-field.toml"),
         flags: &["--integrator", "debug:cost", "--accel", "brute"],
     },
     Shot {
         name: "cost-bounds",
         caption: "Cost map, bounding volumes: a box test per object, the ball only when its box is hit — as many tests, each cheaper.",
-        scene: Some("sphere-field"),
+        scene: Some("sphere-field.toml"),
         flags: &["--integrator", "debug:cost", "--accel", "bounds"],
     },
     Shot {
         name: "cost-octree",
         caption: "Cost map, octree: rays visit cells front to back and stop at the first hit.",
-        scene: Some("sphere-field"),
+        scene: Some("sphere-field.toml"),
         flags: &["--integrator", "debug:cost", "--accel", "octree"],
     },
     Shot {
         name: "cost-bvh",
         caption: "Cost map, SAH BVH: work concentrates on silhouettes and rays that graze many balls.",
-        scene: Some("sphere-field"),
+        scene: Some("sphere-field.toml"),
         flags: &["--integrator", "debug:cost", "--accel", "bvh"],
     },
     Shot {
         name: "cost-wide",
         caption: "Cost map, 8-wide BVH (the default): eight boxes per SIMD test, fewer nodes per ray.",
-        scene: Some("sphere-field"),
+        scene: Some("sphere-field.toml"),
         flags: &["--integrator", "debug:cost", "--accel", "wide"],
     },
     Shot {
@@ -239,6 +240,18 @@ const SHOTS: &[Shot] = &[
         scene: None,
         flags: &["--integrator", "debug:normals"],
     },
+    Shot {
+        name: "cbox-whitted",
+        caption: "The critique of Whitted ray tracing: the Cornell box under Whitted. Its area light becomes a point light — hard shadows — and light does not bounce from wall to wall: the ceiling stays black and no colour bleeds.",
+        scene: Some("cornell-box.xml"),
+        flags: &["--integrator", "whitted"],
+    },
+    Shot {
+        name: "cbox-path",
+        caption: "The answer, path tracing with next-event estimation and MIS: the area light sampled as the rectangle it is gives soft shadows, diffuse interreflection lights the ceiling, and the red and green walls bleed onto the boxes.",
+        scene: Some("cornell-box.xml"),
+        flags: &["--integrator", "path", "--spp", "64"],
+    },
 ];
 
 /// Writes the scenes, renders every shot, and writes `gallery.md`.
@@ -255,6 +268,12 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<ExitCode> {
         let path = scenes.join(format!("{name}.toml"));
         std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
     }
+    // Mitsuba's Cornell box, as the examples ship it.
+    {
+        let path = scenes.join("cornell-box.xml");
+        let text = include_str!("../../../examples/cornell-box.xml");
+        std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+    }
     let exe = std::env::current_exe().context("cannot find the lucent program")?;
     let size = [
         "--width".to_string(),
@@ -269,7 +288,7 @@ pub fn run(args: &GalleryArgs) -> anyhow::Result<ExitCode> {
         let file = format!("{}.png", shot.name);
         let mut argv: Vec<String> = vec!["render".into()];
         if let Some(scene) = shot.scene {
-            argv.push(format!("scenes/{scene}.toml"));
+            argv.push(format!("scenes/{scene}"));
         }
         argv.extend(shot.flags.iter().map(|f| f.to_string()));
         // The density map is written by the render before it; nothing to run for it.

@@ -1,10 +1,12 @@
 //! A render job: the scene, the command line's overrides, and the fingerprint that tells
 //! whether two renders (shards, a checkpoint and its resumption) draw the same image.
 
-use crate::cli::{AaArg, FilterArg, IntegratorArg, Overrides, TriangleTestArg};
+use crate::cli::{AaArg, FilterArg, FilterSamplingArg, IntegratorArg, Overrides, TriangleTestArg};
 use anyhow::{anyhow, bail};
 use lucent_scene::desc::IntegratorName;
-use lucent_scene::desc::settings::{FilterName, SamplingName, TriangleTestName};
+use lucent_scene::desc::settings::{
+    FilterName, FilterSamplingName, SamplingName, TriangleTestName,
+};
 use lucent_scene::desc::values::Finite;
 use lucent_scene::hash::Fingerprint;
 use lucent_scene::{LoadOptions, Loaded, SceneFile, Spanned};
@@ -64,7 +66,7 @@ impl Job {
             s.integrator,
             s.sampling,
             self.loaded.scene.triangle_test().name(),
-            s.filter,
+            (s.filter, s.filter_sampling),
             c.lens(),
         );
         let mut f = Fingerprint::default();
@@ -203,6 +205,12 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
         }));
         d.render.filter_radius = None;
     }
+    if let Some(f) = o.filter_sampling {
+        d.render.filter_sampling = Some(from_flag(match f {
+            FilterSamplingArg::Splat => FilterSamplingName::Splat,
+            FilterSamplingArg::Importance => FilterSamplingName::Importance,
+        }));
+    }
     if let Some(t) = o.time_limit {
         if aa != SamplingName::Uniform {
             bail!("--time-limit needs uniform sampling (--aa uniform)");
@@ -270,6 +278,11 @@ impl Overrides {
             "time_limit",
             self.time_limit.map(|v| v.to_bits().to_string()),
         );
+        put(
+            "filter_sampling",
+            self.filter_sampling
+                .map(|v| format!("{v:?}").to_lowercase()),
+        );
         pairs.join(";")
     }
 
@@ -321,6 +334,12 @@ impl Overrides {
                         <FilterArg as clap::ValueEnum>::from_str(v, false).map_err(|_| bad())?,
                     )
                 }
+                "filter_sampling" => {
+                    o.filter_sampling = Some(
+                        <FilterSamplingArg as clap::ValueEnum>::from_str(v, false)
+                            .map_err(|_| bad())?,
+                    )
+                }
                 "time_limit" => o.time_limit = Some(f64::from_bits(v.parse().map_err(|_| bad())?)),
                 _ => bail!("an unknown setting `{k}`"),
             }
@@ -351,6 +370,7 @@ mod tests {
             aa_depth: Some(4),
             aa_block: Some(2),
             filter: Some(FilterArg::Mitchell),
+            filter_sampling: Some(FilterSamplingArg::Importance),
             time_limit: Some(2.5),
         };
         assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);

@@ -60,6 +60,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     settings.threads = usize::from(args.threads);
     settings.shard = plan.shard;
+    if plan.shard.count > 1
+        && settings.filter != lucent::film::filter::Filter::default()
+        && settings.filter_sampling == lucent::film::splat::FilterSampling::Splat
+    {
+        bail!(
+            "--shard needs every sample kept in its own pixel, so that shards merge bit for bit: use --filter box or --filter-sampling importance"
+        );
+    }
     let meta = FilmMeta {
         fingerprint: plan.job.fingerprint(),
         shard: plan.shard,

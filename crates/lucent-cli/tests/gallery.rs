@@ -44,6 +44,8 @@ fn the_gallery_renders_every_concept() {
         "adaptive",
         "adaptive-density",
         "normals",
+        "cbox-whitted",
+        "cbox-path",
     ];
     for name in names {
         image(name);
@@ -60,4 +62,18 @@ fn the_gallery_renders_every_concept() {
     assert!(brute.pixels().all(|p| *p == first));
     let bvh = image("cost-bvh");
     assert!(bvh.pixels().any(|p| *p != *bvh.get_pixel(0, 0)));
+    // The critique answered: under Whitted the Cornell box's ceiling beside the light is
+    // barely lit (its point light grazes it); the path tracer lights it by interreflection.
+    let ceiling = |img: &image::RgbImage| {
+        let p = img.get_pixel(12, 2);
+        u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2])
+    };
+    let (whitted, path) = (
+        ceiling(&image("cbox-whitted")),
+        ceiling(&image("cbox-path")),
+    );
+    assert!(
+        path > 2 * whitted,
+        "ceiling: whitted {whitted}, path {path}"
+    );
 }

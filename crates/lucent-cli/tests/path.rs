@@ -148,11 +148,18 @@ fn what_cannot_work_together_is_refused() {
             "--time-limit needs uniform sampling",
         ),
         (vec![scene, "--time-limit", "0"], "invalid value"),
+        (
+            vec![scene, "--shard", "0/2", "-o", "part.exr"],
+            "--shard needs every sample kept in its own pixel",
+        ),
     ] {
         let output = render_args(&args);
         assert!(!output.status.success(), "{args:?}");
         let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(stderr.lines().next().unwrap().contains(message), "{args:?}: {stderr}");
+        assert!(
+            stderr.lines().next().unwrap().contains(message),
+            "{args:?}: {stderr}"
+        );
     }
 
     let dir = tempfile::tempdir().unwrap();

@@ -15,6 +15,7 @@
 
 use crate::film::Film;
 use crate::film::filter::{Filter, FilterSampler};
+use crate::film::splat::{Commits, FilterSampling, TileSplats};
 use crate::integrator::{Integrator, RayStats};
 use crate::sampling::sobol::Sampler;
 use crate::sampling::{pixel_offset, uniform};
@@ -73,6 +74,9 @@ pub struct RenderSettings {
     pub sampling: Sampling,
     /// The reconstruction filter: where in and around its pixel a sample goes, and its weight.
     pub filter: Filter,
+    /// Whether a filter other than the one-pixel box splats samples into the pixels it reaches
+    /// or keeps each in its own pixel ([`crate::film::splat`]).
+    pub filter_sampling: FilterSampling,
     /// Stop after this long even if not every pixel has `spp` samples (uniform sampling).
     pub time_limit: Option<Duration>,
 }
@@ -99,6 +103,7 @@ impl Default for RenderSettings {
             shard: Shard::default(),
             sampling: Sampling::default(),
             filter: Filter::default(),
+            filter_sampling: FilterSampling::default(),
             time_limit: None,
         }
     }
@@ -154,6 +159,11 @@ pub enum RenderError {
         /// The cause.
         source: rayon::ThreadPoolBuildError,
     },
+    /// A splatting filter over shards: their films would not merge bit for bit.
+    #[error(
+        "a sharded render keeps every sample in its own pixel: use the box filter, or importance sampling of the filter"
+    )]
+    SplatShards,
     /// The reconstruction filter's parameters are out of range.
     #[error("the reconstruction filter: {0}")]
     Filter(String),
@@ -236,6 +246,12 @@ pub fn render(
         })?;
     let threads = pool.current_num_threads();
     let filter = FilterSampler::new(settings.filter).map_err(RenderError::Filter)?;
+    let splat = adaptive.is_none()
+        && settings.filter_sampling == FilterSampling::Splat
+        && settings.filter != Filter::default();
+    if splat && settings.shard.count > 1 {
+        return Err(RenderError::SplatShards);
+    }
     let deadline = match (adaptive, settings.time_limit) {
         (None, Some(limit)) => Some(begin + limit),
         _ => None,
@@ -268,17 +284,8 @@ pub fn render(
     } else {
         Vec::new()
     });
-    // Traces one tile with `trace` into its region of the film, then reports progress and
-    // writes a checkpoint when one is due.
-    let run = |tile: &Tile, trace: &dyn Fn(&Tile, &mut Film) -> (RayStats, u64)| {
-        if hooks.cancel.load(Ordering::Relaxed) {
-            return;
-        }
-        let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
-        let mut part = lock(&film).region(tile.x0, tile.y0, w, h);
-        let (tile_stats, samples) = trace(tile, &mut part);
-        lock(&film).store_region(&part, tile.x0, tile.y0);
-        *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
+    // Reports progress after a tile, and writes a checkpoint when one is due.
+    let finished = |samples: u64| {
         (hooks.progress)(done.fetch_add(samples, Ordering::Relaxed) + samples, total);
         if let Some(c) = &hooks.checkpoint {
             // One thread at a time, only when due, and not once stopping (the caller writes
@@ -292,6 +299,35 @@ pub fn render(
                 *last = Instant::now();
             }
         }
+    };
+    // Traces one tile with `trace` into its region of the film.
+    let run = |tile: &Tile, trace: &dyn Fn(&Tile, &mut Film) -> (RayStats, u64)| {
+        if hooks.cancel.load(Ordering::Relaxed) {
+            return;
+        }
+        let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
+        let mut part = lock(&film).region(tile.x0, tile.y0, w, h);
+        let (tile_stats, samples) = trace(tile, &mut part);
+        lock(&film).store_region(&part, tile.x0, tile.y0);
+        *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
+        finished(samples);
+    };
+    // Traces tile `index` of the pass, splatting, and adds it to the film in tile order.
+    let commits = Mutex::new(Commits::default());
+    let run_splat = |index: usize, tile: &Tile, to: (u32, Option<Instant>)| {
+        if hooks.cancel.load(Ordering::Relaxed) {
+            return;
+        }
+        let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
+        let start = lock(&film).region(tile.x0, tile.y0, w, h);
+        let (tile_stats, samples, splats) =
+            render_tile_splats(scene, settings, tile, to, &start, hooks.cancel);
+        {
+            let mut c = commits.lock().unwrap_or_else(|e| e.into_inner());
+            c.commit(index, splats, &mut lock(&film));
+        }
+        *stats.lock().unwrap_or_else(|e| e.into_inner()) += tile_stats;
+        finished(samples);
     };
 
     pool.install(|| match adaptive {
@@ -348,12 +384,19 @@ pub fn render(
                     }
                 };
                 upto = settings.spp.min(upto + step);
-                work.par_iter().for_each(|tile| {
-                    run(tile, &|t, part| {
-                        let to = (upto, deadline);
-                        render_tile(scene, settings, &filter, t, to, part, hooks.cancel)
-                    })
-                });
+                let to = (upto, deadline);
+                if splat {
+                    commits.lock().unwrap_or_else(|e| e.into_inner()).new_pass();
+                    work.par_iter()
+                        .enumerate()
+                        .for_each(|(i, tile)| run_splat(i, tile, to));
+                } else {
+                    work.par_iter().for_each(|tile| {
+                        run(tile, &|t, part| {
+                            render_tile(scene, settings, &filter, t, to, part, hooks.cancel)
+                        })
+                    });
+                }
             }
         }
     });
@@ -481,6 +524,61 @@ fn render_tile(
         }
     }
     (stats, taken)
+}
+
+/// Traces the samples of every pixel of `tile` from the counts in `start` (the tile's region of
+/// the film) up to index `upto`, splatting them into a film of the tile and its margin; stops
+/// between samples when cancelled, and between pixels past the deadline.
+fn render_tile_splats(
+    scene: &Scene,
+    settings: &RenderSettings,
+    tile: &Tile,
+    (upto, deadline): (u32, Option<Instant>),
+    start: &Film,
+    cancel: &AtomicBool,
+) -> (RayStats, u64, TileSplats) {
+    let mut stats = RayStats::default();
+    let mut taken = 0;
+    let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
+    let mut splats = TileSplats::new(tile.x0, tile.y0, w, h, &settings.filter);
+    let width = u64::from(scene.camera.width());
+    let path = matches!(settings.integrator, Integrator::Path(_));
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            if deadline.is_some_and(|d| Instant::now() >= d) {
+                return (stats, taken, splats);
+            }
+            let pixel = u64::from(y) * width + u64::from(x);
+            for s in start.samples(x - tile.x0, y - tile.y0)..upto {
+                if cancel.load(Ordering::Relaxed) {
+                    return (stats, taken, splats);
+                }
+                let mut sampler = Sampler::new(settings.seed, pixel, s);
+                // Uniform in the pixel: the filter weighs the sample where it lands.
+                let (u, lens) = if path {
+                    (sampler.next_2d(), sampler.next_2d())
+                } else {
+                    let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
+                    let lens = glam::Vec2::new(
+                        uniform(settings.seed, pixel, s, 2),
+                        uniform(settings.seed, pixel, s, 3),
+                    );
+                    (glam::Vec2::new(dx, dy), lens)
+                };
+                let (sx, sy) = (x as f32 + u.x, y as f32 + u.y);
+                let ray = scene.camera.ray_through_lens(sx, sy, lens);
+                stats.camera += 1;
+                let value = settings
+                    .integrator
+                    .radiance(scene, &ray, &mut sampler, &mut stats);
+                let finite = value.is_finite();
+                stats.nonfinite += u64::from(!finite);
+                splats.add(&settings.filter, (x, y), (sx, sy), finite.then_some(value));
+                taken += 1;
+            }
+        }
+    }
+    (stats, taken, splats)
 }
 
 /// The camera ray of sample `s` of pixel `(x, y)` (index `pixel`), and its film weight.

@@ -9,6 +9,8 @@ use lucent::Rgb;
 use lucent::bsdf::Transport;
 use lucent::camera::Camera;
 use lucent::film::Film;
+use lucent::film::filter::Filter;
+use lucent::film::splat::FilterSampling;
 use lucent::integrator::{Integrator, PathTracer};
 use lucent::material::{Material, Surface};
 use lucent::render::{Hooks, RenderSettings, render};
@@ -19,6 +21,24 @@ use lucent::shape::{Mesh, Sphere};
 use std::sync::atomic::AtomicBool;
 
 fn film_of(scene: &Scene, spp: u32, threads: usize, max_depth: u32) -> Film {
+    film_filtered(
+        scene,
+        spp,
+        threads,
+        max_depth,
+        Filter::default(),
+        FilterSampling::Splat,
+    )
+}
+
+fn film_filtered(
+    scene: &Scene,
+    spp: u32,
+    threads: usize,
+    max_depth: u32,
+    filter: Filter,
+    filter_sampling: FilterSampling,
+) -> Film {
     let settings = RenderSettings {
         integrator: Integrator::Path(PathTracer {
             max_depth,
@@ -27,6 +47,8 @@ fn film_of(scene: &Scene, spp: u32, threads: usize, max_depth: u32) -> Film {
         spp,
         threads,
         seed: 7,
+        filter,
+        filter_sampling,
         ..RenderSettings::default()
     };
     let cancel = AtomicBool::new(false);
@@ -236,6 +258,98 @@ fn the_same_seed_gives_the_same_image_on_any_number_of_threads() {
     let one = film_of(&scene, 8, 1, 10);
     let two = film_of(&scene, 8, 2, 10);
     assert_eq!(one, two);
+}
+
+#[test]
+fn a_splatted_gaussian_is_as_bright_less_noisy_and_the_same_on_any_threads() {
+    // A uniformly lit white floor seen straight down: every pixel has the same expected value,
+    // so the spread over pixels is the noise.
+    let camera = Camera::new(Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::Z, 40.0, 24, 24).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    b.background(Rgb::WHITE);
+    let floor = b.material(Material {
+        kd: Rgb::gray(0.5).into(),
+        surface: Surface::Diffuse,
+        ..Material::default()
+    });
+    b.plane(lucent::shape::Plane::new(Vec3::ZERO, Vec3::Y), floor);
+    let scene = b.build().unwrap();
+    let gaussian = Filter::Gaussian {
+        radius: 2.0,
+        sigma: 0.5,
+    };
+    let stats = |film: &Film| {
+        // Inner pixels only: the border has fewer neighbours to share with.
+        let v: Vec<f64> = (3..21)
+            .flat_map(|y| (3..21).map(move |x| (x, y)))
+            .map(|(x, y)| f64::from(film.pixel(x, y).g))
+            .collect();
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let var = v.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / v.len() as f64;
+        (mean, var)
+    };
+    let splat = film_filtered(&scene, 4, 2, 0, gaussian, FilterSampling::Splat);
+    let importance = film_filtered(&scene, 4, 2, 0, gaussian, FilterSampling::Importance);
+    let ((ms, vs), (mi, vi)) = (stats(&splat), stats(&importance));
+    // The floor's radiance is ρ·L = 0.5 under a white sky; both estimate it.
+    assert!(
+        (ms - 0.5).abs() < 0.01 && (mi - 0.5).abs() < 0.02,
+        "{ms} {mi}"
+    );
+    assert!(
+        vs < vi / 2.0,
+        "variance splatted {vs:.2e}, importance-sampled {vi:.2e}"
+    );
+    assert_eq!(
+        splat,
+        film_filtered(&scene, 4, 1, 0, gaussian, FilterSampling::Splat)
+    );
+}
+
+#[test]
+fn a_splatting_render_stopped_and_resumed_is_the_uninterrupted_one() {
+    let grey = Material {
+        kd: Rgb::gray(0.5).into(),
+        surface: Surface::Diffuse,
+        ..Material::default()
+    };
+    let scene = furnace(grey, 40);
+    let settings = RenderSettings {
+        integrator: Integrator::Path(PathTracer::default()),
+        spp: 96,
+        threads: 2,
+        tile_size: 8,
+        filter: Filter::Mitchell {
+            radius: 2.0,
+            b: 1.0 / 3.0,
+            c: 1.0 / 3.0,
+        },
+        ..RenderSettings::default()
+    };
+    let run = |start: Option<Film>, stop_after: u64| {
+        let cancel = AtomicBool::new(false);
+        let progress = |done: u64, _| {
+            if done >= stop_after {
+                cancel.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+        };
+        let hooks = Hooks {
+            cancel: &cancel,
+            progress: &progress,
+            checkpoint: None,
+        };
+        render(&scene, &settings, start, &hooks).unwrap()
+    };
+    let whole = run(None, u64::MAX);
+    assert!(whole.complete);
+    // Stopped in the second pass (past 64 samples a pixel), then resumed.
+    let stopped = run(None, 40 * 40 * 70);
+    assert!(!stopped.complete);
+    let (least, most) = stopped.samples_range;
+    assert!(least >= 64 && least < 96 && most <= 96, "{least}..{most}");
+    let resumed = run(Some(stopped.film), u64::MAX);
+    assert!(resumed.complete);
+    assert_eq!(resumed.film, whole.film);
 }
 
 #[test]

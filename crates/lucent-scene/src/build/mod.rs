@@ -7,7 +7,9 @@ pub mod materials;
 mod objects;
 pub mod shapes;
 
-use crate::desc::settings::{FilterName, RenderDesc, SamplingName, TriangleTestName};
+use crate::desc::settings::{
+    FilterName, FilterSamplingName, RenderDesc, SamplingName, TriangleTestName,
+};
 use crate::desc::{IntegratorName, SceneDesc};
 use crate::error::{LoadError, Source};
 use crate::hash::Fingerprint;
@@ -17,6 +19,7 @@ use lucent::Rgb;
 use lucent::accel::AccelKind;
 use lucent::camera::Camera;
 use lucent::film::filter::Filter;
+use lucent::film::splat::FilterSampling;
 use lucent::integrator::{DebugView, Integrator, PathTracer, Whitted};
 use lucent::render::{RenderSettings, Sampling};
 use lucent::scene::{Scene, SceneBuilder};
@@ -372,6 +375,10 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         seed: r.seed,
         sampling,
         filter: filter(r, source)?,
+        filter_sampling: match r.filter_sampling.as_ref().map(|f| *f.get_ref()) {
+            None | Some(FilterSamplingName::Splat) => FilterSampling::Splat,
+            Some(FilterSamplingName::Importance) => FilterSampling::Importance,
+        },
         time_limit,
         ..RenderSettings::default()
     })

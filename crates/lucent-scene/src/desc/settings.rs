@@ -115,6 +115,17 @@ pub enum FilterName {
     Mitchell,
 }
 
+/// How a filter other than the box weighs samples (`[render] filter_sampling`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FilterSamplingName {
+    /// Into every pixel the filter reaches (default).
+    #[default]
+    Splat,
+    /// Into its own pixel, placed in proportion to the filter.
+    Importance,
+}
+
 /// `[render]`.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
@@ -151,6 +162,9 @@ pub struct RenderDesc {
     /// The filter's radius in pixels (default: the filter's own).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub filter_radius: Option<Spanned<Finite>>,
+    /// `"splat"` (default) or `"importance"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub filter_sampling: Option<Spanned<FilterSamplingName>>,
     /// Path: bounces before Russian roulette may end a path (default 5).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rr_depth: Option<Spanned<u32>>,
@@ -175,6 +189,7 @@ impl Default for RenderDesc {
             aa_block: None,
             filter: None,
             filter_radius: None,
+            filter_sampling: None,
             rr_depth: None,
             time_limit: None,
         }

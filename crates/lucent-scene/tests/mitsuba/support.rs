@@ -260,6 +260,8 @@ pub fn render_small(file: &SceneFile, size: u32, integrator: IntegratorName) -> 
     file.desc.image.height = Spanned::new(0..0, size);
     file.desc.image.samples = Spanned::new(0..0, 1);
     file.desc.render.integrator = integrator;
+    // One ray through each pixel's centre, nothing of its neighbours: the box filter.
+    file.desc.render.filter = None;
     let loaded = file.build().unwrap_or_else(|e| panic!("{e}"));
     let settings = RenderSettings {
         threads: 1,

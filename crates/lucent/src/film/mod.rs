@@ -7,6 +7,7 @@
 //! encoding happen only on output ([`tonemap`]).
 
 pub mod filter;
+pub mod splat;
 pub mod tonemap;
 
 use crate::Rgb;
@@ -100,6 +101,41 @@ impl Film {
             self.weights[i] += weight;
         }
         self.samples[i] += 1;
+    }
+
+    /// Adds `value·weight` and `weight` at pixel `(x, y)` without counting a sample there: a
+    /// sample's share in a pixel its filter reaches ([`splat`]).
+    pub fn add_splat(&mut self, x: u32, y: u32, value: Rgb, weight: f32) {
+        let i = self.index(x, y);
+        self.sums[i] += value * weight;
+        self.weights[i] += weight;
+    }
+
+    /// Counts one more sample taken in pixel `(x, y)` (its value splatted apart).
+    pub fn count_sample(&mut self, x: u32, y: u32) {
+        let i = self.index(x, y);
+        self.samples[i] += 1;
+    }
+
+    /// Adds `part` (sums, weights and counts) where its top-left pixel falls at `(x0, y0)` of
+    /// this film, which may be outside it: what falls outside is dropped.
+    pub fn add_region(&mut self, part: &Film, x0: i64, y0: i64) {
+        for y in 0..part.height {
+            let fy = y0 + i64::from(y);
+            if fy < 0 || fy >= i64::from(self.height) {
+                continue;
+            }
+            for x in 0..part.width {
+                let fx = x0 + i64::from(x);
+                if fx < 0 || fx >= i64::from(self.width) {
+                    continue;
+                }
+                let (src, dst) = (part.index(x, y), self.index(fx as u32, fy as u32));
+                self.sums[dst] += part.sums[src];
+                self.weights[dst] += part.weights[src];
+                self.samples[dst] += part.samples[src];
+            }
+        }
     }
 
     /// Samples taken at pixel `(x, y)` so far.
