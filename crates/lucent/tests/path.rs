@@ -346,7 +346,7 @@ fn a_splatting_render_stopped_and_resumed_is_the_uninterrupted_one() {
     let stopped = run(None, 40 * 40 * 70);
     assert!(!stopped.complete);
     let (least, most) = stopped.samples_range;
-    assert!(least >= 64 && least < 96 && most <= 96, "{least}..{most}");
+    assert!((64..96).contains(&least) && most <= 96, "{least}..{most}");
     let resumed = run(Some(stopped.film), u64::MAX);
     assert!(resumed.complete);
     assert_eq!(resumed.film, whole.film);
