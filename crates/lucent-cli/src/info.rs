@@ -23,7 +23,27 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         "triangles:   {} ({} stored)",
         c.triangles, c.unique_triangles
     );
-    println!("lights:      {}", c.lights);
+    let e = &scene.emitters;
+    let mut extra = Vec::new();
+    match e.area.lights.len() {
+        0 => {}
+        1 => extra.push("1 area light".to_string()),
+        n => extra.push(format!("{n} area lights")),
+    }
+    if e.environment.is_some() {
+        extra.push("an environment".to_string());
+    }
+    let path = matches!(
+        loaded.settings.integrator,
+        lucent::integrator::Integrator::Path(_)
+    );
+    if extra.is_empty() || !path {
+        println!("lights:      {}", c.lights);
+    } else {
+        // What the path tracer samples besides the point-like lights (the classic
+        // integrators see the environment only where rays miss).
+        println!("lights:      {} (and {})", c.lights, extra.join(" and "));
+    }
     println!("materials:   {}", c.materials);
     let b = scene.bounds();
     let infinite = if c.planes > 0 {
@@ -51,8 +71,24 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
             format!("adaptive (threshold {}, depth {})", a.threshold, a.depth)
         }
     };
+    let filter = if s.filter == lucent::film::filter::Filter::default() {
+        String::new()
+    } else {
+        let how = match s.filter_sampling {
+            lucent::film::splat::FilterSampling::Splat => "splatted",
+            lucent::film::splat::FilterSampling::Importance => "importance-sampled",
+        };
+        format!(
+            ", {} filter of radius {} ({how})",
+            s.filter.name(),
+            s.filter.radius()
+        )
+    };
+    let limit = s.time_limit.map_or(String::new(), |t| {
+        format!(", at most {:.1} s", t.as_secs_f64())
+    });
     println!(
-        "image:       {w}×{h}, {sampling}, integrator {}",
+        "image:       {w}×{h}, {sampling}{limit}, integrator {}{filter}",
         s.integrator.name()
     );
     let a = scene.accel_report();
