@@ -111,14 +111,22 @@ impl Material {
     /// The BSDF at a surface point whose diffuse colour (`kd` evaluated there) is `kd`.
     pub fn bsdf(&self, kd: Rgb) -> Bsdf {
         match self.surface {
-            Surface::Classic => Bsdf::Classic {
-                kd,
-                ks: self.ks,
-                shininess: self.shininess,
-                kr: self.kr,
-                kt: self.kt,
-                eta: self.ior,
-            },
+            Surface::Classic => {
+                // Whitted's coefficients often add up to more than 1 (the default scene's glass:
+                // ks 0.7 + kr 0.1 + kt 0.88): harmless for one bounce, but a path tracer
+                // multiplies them at every bounce, and light trapped in glass would grow without
+                // bound. Scaled down together to sum to at most 1, they keep their balance.
+                let sum = (kd + self.ks + self.kr + self.kt).max_channel();
+                let s = if sum > 1.0 { 1.0 / sum } else { 1.0 };
+                Bsdf::Classic {
+                    kd: kd * s,
+                    ks: self.ks * s,
+                    shininess: self.shininess,
+                    kr: self.kr * s,
+                    kt: self.kt * s,
+                    eta: self.ior,
+                }
+            }
             Surface::Diffuse => Bsdf::Lambert { albedo: kd },
             Surface::Conductor {
                 eta,
@@ -169,5 +177,42 @@ impl Material {
                 alpha,
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classic_lobes_that_sum_past_one_are_scaled_together() {
+        let glass = Material {
+            ks: Rgb::gray(0.7),
+            kr: Rgb::gray(0.1),
+            kt: Rgb::gray(0.88),
+            ior: 1.5,
+            ..Material::default()
+        };
+        let Bsdf::Classic { kd, ks, kr, kt, .. } = glass.bsdf(Rgb::BLACK) else {
+            panic!("a whitted material is the classic BSDF");
+        };
+        assert!(((kd + ks + kr + kt).max_channel() - 1.0).abs() < 1e-6);
+        assert!(
+            (ks.r / kt.r - 0.7 / 0.88).abs() < 1e-6,
+            "the balance is kept"
+        );
+        // Coefficients that fit are used as given.
+        let matte = Material::diffuse(Rgb::gray(0.6));
+        assert_eq!(
+            matte.bsdf(Rgb::gray(0.6)),
+            Bsdf::Classic {
+                kd: Rgb::gray(0.6),
+                ks: Rgb::BLACK,
+                shininess: 0.0,
+                kr: Rgb::BLACK,
+                kt: Rgb::BLACK,
+                eta: 1.0
+            }
+        );
     }
 }
