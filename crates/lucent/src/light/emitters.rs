@@ -14,9 +14,9 @@ use crate::sampling::distribution::Distribution1D;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
-/// One light, as the picking distribution lists them.
+/// One light, as the picking distribution lists them ([`Emitters::pick`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Entry {
+pub enum Entry {
     /// `Scene::lights[i]`.
     Delta(u32),
     /// `AreaLights::lights[i]`.
@@ -98,13 +98,21 @@ impl Emitters {
         }
     }
 
+    /// The light that `u_pick` chooses, in proportion to its power, as [`Emitters::sample`]
+    /// chooses it: which light, the probability of choosing it, and `u_pick` rescaled to
+    /// `[0, 1)` within its share (uniform and independent of the choice, for reuse). `None`
+    /// when there are no lights.
+    pub fn pick(&self, u_pick: f32) -> Option<(Entry, f32, f32)> {
+        let (i, pmf, u_rest) = self.pick.as_ref()?.sample_discrete(u_pick);
+        Some((self.entries[i], pmf, u_rest))
+    }
+
     /// A light sample for the point `p`: `u_pick` chooses the light, `u` the point on it;
     /// `delta` lights are the scene's `lights`. `None` when the chosen light sends nothing
     /// towards `p`.
     pub fn sample(&self, delta: &[Light], p: Vec3, u_pick: f32, u: Vec2) -> Option<EmitterSample> {
-        let pick = self.pick.as_ref()?;
-        let (i, pmf, u_rest) = pick.sample_discrete(u_pick);
-        let mut s = match self.entries[i] {
+        let (entry, pmf, u_rest) = self.pick(u_pick)?;
+        let mut s = match entry {
             Entry::Delta(j) => {
                 let l = delta[j as usize].illuminate(p)?;
                 EmitterSample {

@@ -2,17 +2,21 @@
 //! and the environment, sampled together through [`Emitters`].
 //!
 //! A light answers, for a point being shaded, where it is (direction and distance) and how
-//! much it delivers there ([`LightSample`]). To add a kind: a file with its struct and
-//! `illuminate`, a variant here, and its scene-file keys.
+//! much it delivers there ([`LightSample`]); and, for photon mapping, where its light starts
+//! and which way it goes ([`Photon`], [`Emitters::sample_photon`] in [`emission`]). To add a
+//! kind: a file with its struct and `illuminate`, a variant here, a photon in [`emission`],
+//! and its scene-file keys.
 
 pub mod area;
 pub mod directional;
+pub mod emission;
 pub mod emitters;
 pub mod environment;
 pub mod point;
 pub mod spot;
 
 pub use area::{AreaLights, EmitterSample};
+pub use emission::{Photon, bounding_sphere};
 pub use emitters::Emitters;
 pub use environment::EnvironmentLight;
 
