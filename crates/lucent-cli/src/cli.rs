@@ -41,6 +41,8 @@ pub enum IntegratorArg {
     Whitted,
     /// Path tracing: global illumination, area and environment lights, soft shadows.
     Path,
+    /// Stochastic progressive photon mapping: caustics, even from point lights.
+    Sppm,
     /// Debug view: shading normals as colours.
     #[value(name = "debug:normals")]
     DebugNormals,

@@ -35,7 +35,7 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
     }
     let path = matches!(
         loaded.settings.integrator,
-        lucent::integrator::Integrator::Path(_)
+        lucent::integrator::Integrator::Path(_) | lucent::integrator::Integrator::Sppm(_)
     );
     if extra.is_empty() || !path {
         println!("lights:      {}", c.lights);

@@ -182,6 +182,7 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
             IntegratorArg::Raycast => IntegratorName::Raycast,
             IntegratorArg::Whitted => IntegratorName::Whitted,
             IntegratorArg::Path => IntegratorName::Path,
+            IntegratorArg::Sppm => IntegratorName::Sppm,
             IntegratorArg::DebugNormals => IntegratorName::DebugNormals,
             IntegratorArg::DebugDepth => IntegratorName::DebugDepth,
             IntegratorArg::DebugAlbedo => IntegratorName::DebugAlbedo,

@@ -60,6 +60,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     settings.threads = usize::from(args.threads);
     settings.shard = plan.shard;
+    if matches!(settings.integrator, Integrator::Sppm(_)) {
+        if args.checkpoint_every.is_some() || args.resume.is_some() {
+            bail!(
+                "a photon-mapped render cannot be checkpointed or resumed: its photon statistics are not in the film"
+            );
+        }
+        if plan.shard.count > 1 {
+            bail!(
+                "a photon-mapped render cannot be split into shards: every photon reaches every pixel"
+            );
+        }
+    }
     if plan.shard.count > 1
         && settings.filter != lucent::film::filter::Filter::default()
         && settings.filter_sampling == lucent::film::splat::FilterSampling::Splat
@@ -194,6 +206,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
 
+    if matches!(settings.integrator, Integrator::Sppm(_)) {
+        // The photon statistics are not in a film: what there is, is the image.
+        write_image(&rendered.film, &plan.output, plan.format)
+            .with_context(|| format!("cannot write {}", plan.output.display()))?;
+        let reached = format!("{least} of {} iterations", settings.spp);
+        println!("{}", summary(&plan.output, w, h, &reached, &rendered.stats));
+        eprintln!(
+            "interrupted after {reached}: wrote the image to {} (a photon-mapped render cannot be resumed)",
+            plan.output.display()
+        );
+        return Ok(ExitCode::from(INTERRUPTED));
+    }
     // Stopped: the checkpoint first, since it is what lets the work go on. An unfinished
     // shard writes nothing under its final name, so a batch script can tell it from a
     // finished one.
@@ -380,8 +404,13 @@ pub fn parse_shard(spec: &str) -> anyhow::Result<Shard> {
 /// The one statistics line printed after a render.
 fn summary(output: &Path, w: u32, h: u32, samples: &str, s: &RenderStats) -> String {
     let r = &s.rays;
+    let photons = if r.photons > 0 {
+        format!(", photon {}", r.photons)
+    } else {
+        String::new()
+    };
     format!(
-        "{}: {w}×{h}, {samples}, {} rays (camera {}, shadow {}, reflected {}, refracted {}), {:.3} s, {:.3} Mrays/s, {} threads",
+        "{}: {w}×{h}, {samples}, {} rays (camera {}, shadow {}, reflected {}, refracted {}{photons}), {:.3} s, {:.3} Mrays/s, {} threads",
         output.display(),
         r.total(),
         r.camera,

@@ -143,6 +143,12 @@ impl Camera {
         self.eye
     }
 
+    /// The angle one pixel subtends at the image's centre, in radians (the size of a pixel at
+    /// distance 1).
+    pub fn pixel_angle(&self) -> f32 {
+        2.0 * self.up.length() / self.height as f32
+    }
+
     /// The ray from the eye through image point `(x, y)` (see the type's docs), unit direction.
     pub fn ray(&self, x: f32, y: f32) -> Ray {
         let ndc_x = 2.0 * x / self.width as f32 - 1.0;

@@ -159,6 +159,9 @@ pub enum RenderError {
         /// The cause.
         source: rayon::ThreadPoolBuildError,
     },
+    /// The photon mapper's state is not in the film.
+    #[error("a photon-mapped render cannot be {0}: its photon statistics are not in the film")]
+    Sppm(&'static str),
     /// A splatting filter over shards: their films would not merge bit for bit.
     #[error(
         "a sharded render keeps every sample in its own pixel: use the box filter, or importance sampling of the filter"
@@ -206,6 +209,14 @@ pub fn render(
     hooks: &Hooks,
 ) -> Result<Rendered, RenderError> {
     let begin = Instant::now();
+    let sppm = match settings.integrator {
+        Integrator::Sppm(_) if start.is_some() => return Err(RenderError::Sppm("resumed")),
+        Integrator::Sppm(_) if settings.shard.count > 1 => {
+            return Err(RenderError::Sppm("split into shards"));
+        }
+        Integrator::Sppm(s) => Some(s),
+        _ => None,
+    };
     let adaptive = match settings.sampling {
         // Quadtree blocks stay inside tiles: at most the largest power of two dividing them.
         Sampling::Adaptive(a) => Some(Adaptive {
@@ -245,6 +256,11 @@ pub fn render(
             source,
         })?;
     let threads = pool.current_num_threads();
+    if let Some(sppm) = sppm {
+        return Ok(pool.install(|| {
+            crate::integrator::sppm::render_sppm(scene, settings, &sppm, hooks, begin)
+        }));
+    }
     let filter = FilterSampler::new(settings.filter).map_err(RenderError::Filter)?;
     let splat = adaptive.is_none()
         && settings.filter_sampling == FilterSampling::Splat

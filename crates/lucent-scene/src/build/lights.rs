@@ -18,8 +18,17 @@ pub struct EmitterSurface {
 
 /// Adds every `[[light]]`; an environment light sets the background, and under the classic
 /// integrators (not `path`, which samples it as a light) the ambient light too.
-pub fn add_lights(desc: &SceneDesc, ctx: &mut Context, path: bool) -> Result<(), LoadError> {
+///
+/// The photon mapper (`sppm`) needs lights with a flux: a point or spot light without falloff
+/// (the classic model) becomes one with quadratic falloff, said in one warning.
+pub fn add_lights(
+    desc: &SceneDesc,
+    ctx: &mut Context,
+    path: bool,
+    sppm: bool,
+) -> Result<(), LoadError> {
     let mut environment = None;
+    let mut made_physical = 0;
     for l in &desc.lights {
         let d = l.get_ref();
         let kind = d.kind.name();
@@ -55,6 +64,7 @@ pub fn add_lights(desc: &SceneDesc, ctx: &mut Context, path: bool) -> Result<(),
                 .get_ref()
                 .0;
             let falloff = match d.falloff.as_ref().map(|f| *f.get_ref()) {
+                None | Some(FalloffName::None) if sppm => Falloff::Quadratic,
                 None | Some(FalloffName::None) => Falloff::None,
                 Some(FalloffName::Quadratic) => Falloff::Quadratic,
             };
@@ -64,6 +74,14 @@ pub fn add_lights(desc: &SceneDesc, ctx: &mut Context, path: bool) -> Result<(),
                 falloff,
             })
         };
+        if sppm
+            && matches!(d.kind, LightKind::Point | LightKind::Spot)
+            && d.falloff
+                .as_ref()
+                .is_none_or(|f| *f.get_ref() == FalloffName::None)
+        {
+            made_physical += 1;
+        }
         let light = match d.kind {
             LightKind::Point => Light::Point(point(ctx)?),
             LightKind::Directional => Light::Directional(DirectionalLight {
@@ -121,6 +139,14 @@ pub fn add_lights(desc: &SceneDesc, ctx: &mut Context, path: bool) -> Result<(),
             }
         };
         ctx.builder.light(light);
+    }
+    if made_physical > 0 {
+        ctx.warnings.push(format!(
+            "{}: {made_physical} light{} without falloff fall{} off as 1/d² under the sppm integrator (photons need a physical light)",
+            ctx.source.path.display(),
+            if made_physical == 1 { "" } else { "s" },
+            if made_physical == 1 { "s" } else { "" },
+        ));
     }
     if let Some(mean) = environment.filter(|_| !path) {
         ctx.builder.add_ambient(mean);

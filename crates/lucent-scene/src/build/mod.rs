@@ -20,7 +20,7 @@ use lucent::accel::AccelKind;
 use lucent::camera::Camera;
 use lucent::film::filter::Filter;
 use lucent::film::splat::FilterSampling;
-use lucent::integrator::{DebugView, Integrator, PathTracer, Whitted};
+use lucent::integrator::{DebugView, Integrator, PathTracer, Sppm, Whitted};
 use lucent::render::{RenderSettings, Sampling};
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::schedule::adaptive::{Adaptive, MAX_DEPTH as ADAPTIVE_MAX_DEPTH};
@@ -143,7 +143,7 @@ pub fn build_with_files(
     options: &LoadOptions,
     files: MeshFiles,
 ) -> Result<Loaded, LoadError> {
-    let settings = render_settings(desc, source)?;
+    let mut settings = render_settings(desc, source)?;
     let cam = desc.camera.get_ref();
     let (width, height) = (*desc.image.width.get_ref(), *desc.image.height.get_ref());
     let camera = Camera::new(cam.eye.0, cam.look_at.0, cam.up.0, cam.fov.0, width, height)
@@ -173,12 +173,21 @@ pub fn build_with_files(
         TriangleTestName::Watertight => TriangleTest::Watertight,
         TriangleTestName::Projection => TriangleTest::Projection,
     });
+    let mut early_warnings = Vec::new();
+    if matches!(settings.integrator, Integrator::Sppm(_)) && settings.filter != Filter::default() {
+        early_warnings.push(format!(
+            "{}: the {} filter is rendered as the box by the sppm integrator (its estimate stays in each pixel)",
+            source.path.display(),
+            settings.filter.name()
+        ));
+        settings.filter = Filter::default();
+    }
     let mut ctx = Context {
         source,
         base_dir,
         options,
         inputs: Fingerprint::default(),
-        warnings: Vec::new(),
+        warnings: early_warnings,
         builder,
         mesh_files: files,
         images: HashMap::new(),
@@ -202,7 +211,12 @@ pub fn build_with_files(
         }
         material_ids.insert(name.as_str(), (ctx.builder.material(material), material));
     }
-    let path = matches!(settings.integrator, Integrator::Path(_));
+    // The physically based integrators render area lights, environments and rough materials
+    // as they are.
+    let path = matches!(
+        settings.integrator,
+        Integrator::Path(_) | Integrator::Sppm(_)
+    );
     if !approximated.is_empty() && !path {
         let names: Vec<String> = approximated.iter().map(|(_, n)| format!("`{n}`")).collect();
         ctx.warnings.push(format!(
@@ -215,7 +229,8 @@ pub fn build_with_files(
         ));
     }
 
-    lights::add_lights(desc, &mut ctx, path)?;
+    let sppm = matches!(settings.integrator, Integrator::Sppm(_));
+    lights::add_lights(desc, &mut ctx, path, sppm)?;
 
     let mut meshes = objects::MeshCache::new();
     let mut emitters = Vec::new();
@@ -329,6 +344,23 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         IntegratorName::DebugId => Integrator::Debug(DebugView::Id),
         IntegratorName::DebugBarycentrics => Integrator::Debug(DebugView::Barycentrics),
         IntegratorName::DebugCost => Integrator::Debug(DebugView::Cost),
+        IntegratorName::Sppm => Integrator::Sppm(Sppm {
+            max_depth,
+            photons: match &r.photons {
+                Some(p) if *p.get_ref() == 0 => {
+                    return Err(source.error(p.span(), "photons must be at least 1"));
+                }
+                Some(p) => *p.get_ref(),
+                None => 0,
+            },
+            radius: match &r.photon_radius {
+                Some(p) if p.get_ref().0.is_nan() || p.get_ref().0 <= 0.0 => {
+                    return Err(source.error(p.span(), "photon_radius must be positive"));
+                }
+                Some(p) => p.get_ref().0,
+                None => 0.0,
+            },
+        }),
         IntegratorName::Path => Integrator::Path(PathTracer {
             max_depth,
             rr_depth: r
@@ -341,6 +373,15 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
         && r.integrator != IntegratorName::Path
     {
         return Err(source.error(d.span(), "`rr_depth` applies to the path integrator only"));
+    }
+    let sppm_only = [
+        ("photons", r.photons.as_ref().map(|p| p.span())),
+        ("photon_radius", r.photon_radius.as_ref().map(|p| p.span())),
+    ];
+    if r.integrator != IntegratorName::Sppm
+        && let Some((key, span)) = sppm_only.iter().find_map(|(k, s)| Some((k, s.clone()?)))
+    {
+        return Err(source.error(span, format!("`{key}` applies to the sppm integrator only")));
     }
     if let Some(s) = &r.shadows
         && r.integrator != IntegratorName::Whitted

@@ -56,6 +56,8 @@ pub enum IntegratorName {
     Whitted,
     /// Path tracing: global illumination, area lights, soft shadows.
     Path,
+    /// Stochastic progressive photon mapping: caustics.
+    Sppm,
     /// Debug view: shading normals.
     #[serde(rename = "debug:normals")]
     DebugNormals,
@@ -168,6 +170,13 @@ pub struct RenderDesc {
     /// Path: bounces before Russian roulette may end a path (default 5).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rr_depth: Option<Spanned<u32>>,
+    /// Sppm: photons per iteration (default: one per pixel).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub photons: Option<Spanned<u32>>,
+    /// Sppm: the first gather radius in scene units (default: three pixels at the scene's
+    /// centre).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub photon_radius: Option<Spanned<Finite>>,
     /// Stop after this many seconds, whatever the samples (uniform sampling).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub time_limit: Option<Spanned<Finite>>,
@@ -191,6 +200,8 @@ impl Default for RenderDesc {
             filter_radius: None,
             filter_sampling: None,
             rr_depth: None,
+            photons: None,
+            photon_radius: None,
             time_limit: None,
         }
     }

@@ -10,10 +10,13 @@ pub mod debug;
 pub mod path;
 pub mod raycast;
 pub mod record;
+pub mod sppm;
+pub mod vertex;
 pub mod whitted;
 
 pub use debug::DebugView;
 pub use path::PathTracer;
+pub use sppm::Sppm;
 pub use whitted::Whitted;
 
 use crate::Rgb;
@@ -34,6 +37,8 @@ pub struct RayStats {
     pub refracted: u64,
     /// Samples whose radiance was NaN or infinite, dropped from the film.
     pub nonfinite: u64,
+    /// Rays of photons from the lights (the photon mapper): one per segment of a photon's path.
+    pub photons: u64,
     /// Accelerator work over all rays.
     pub traversal: TraversalStats,
 }
@@ -41,7 +46,7 @@ pub struct RayStats {
 impl RayStats {
     /// All rays traced.
     pub fn total(&self) -> u64 {
-        self.camera + self.shadow + self.reflected + self.refracted
+        self.camera + self.shadow + self.reflected + self.refracted + self.photons
     }
 }
 
@@ -52,6 +57,7 @@ impl std::ops::AddAssign for RayStats {
         self.reflected += o.reflected;
         self.refracted += o.refracted;
         self.nonfinite += o.nonfinite;
+        self.photons += o.photons;
         self.traversal += o.traversal;
     }
 }
@@ -67,6 +73,8 @@ pub enum Integrator {
     Debug(DebugView),
     /// Path tracing with next-event estimation and MIS: global illumination.
     Path(PathTracer),
+    /// Stochastic progressive photon mapping: caustics, also from point lights.
+    Sppm(Sppm),
 }
 
 impl Default for Integrator {
@@ -83,13 +91,14 @@ impl Integrator {
             Integrator::Whitted(_) => "whitted",
             Integrator::Debug(view) => view.name(),
             Integrator::Path(_) => "path",
+            Integrator::Sppm(_) => "sppm",
         }
     }
 
     /// True when the integrator draws random numbers: its samples differ, and only their mean
     /// converges (adaptive supersampling needs one that does not).
     pub fn is_stochastic(&self) -> bool {
-        matches!(self, Integrator::Path(_))
+        matches!(self, Integrator::Path(_) | Integrator::Sppm(_))
     }
 
     /// Radiance along `ray`; see the module's contract.
@@ -106,6 +115,13 @@ impl Integrator {
             Integrator::Whitted(w) => w.radiance(scene, ray, stats),
             Integrator::Debug(view) => debug::radiance(*view, scene, ray, stats),
             Integrator::Path(p) => p.radiance(scene, ray, sampler, stats),
+            // One ray alone cannot be photon mapped (the estimate needs every pixel's visible
+            // point: the renderer runs `sppm::render_sppm`); it is path traced.
+            Integrator::Sppm(s) => PathTracer {
+                max_depth: s.max_depth,
+                ..PathTracer::default()
+            }
+            .radiance(scene, ray, sampler, stats),
         }
     }
 }

@@ -29,12 +29,11 @@
 //! lights the scene; the ambient term of the classic model is not used.
 
 use super::RayStats;
+use super::vertex::Vertex;
 use crate::Rgb;
-use crate::bsdf::{Frame, Transport};
+use crate::bsdf::Transport;
 use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
-use crate::shape::SurfaceHit;
-use crate::spawn::spawn_ray;
 use glam::Vec3;
 use lucent_accel::Ray;
 
@@ -116,42 +115,22 @@ impl PathTracer {
             if depth > self.max_depth {
                 break;
             }
-            let bsdf = m.bsdf(scene.diffuse(m, &hit));
-            // A two-sided reflector scatters on whichever side the ray arrives.
-            let back = hit.normal.dot(ray.dir) > 0.0;
-            let flip = back && m.two_sided && !bsdf.transmits();
-            let (n, ng) = if flip {
-                (-hit.shading_normal, -hit.normal)
-            } else {
-                (hit.shading_normal, hit.normal)
-            };
-            let frame = Frame::from_normal(n);
-            let wo_world = -ray.dir;
-            let wo = frame.to_local(wo_world);
-            let wo_side = wo_world.dot(ng) > 0.0;
-
-            if !bsdf.is_delta() {
-                l += beta * self.light(scene, &hit, &bsdf, &frame, ng, wo, u_light, stats);
+            let v = Vertex::new(scene, ray.dir, hit);
+            if !v.bsdf.is_delta() {
+                l += beta * v.direct_light(scene, u_light, true, stats);
             }
-            let Some(s) = bsdf.sample(wo, u_bsdf.0, u_bsdf.1, Transport::Radiance) else {
+            let Some(b) = v.bounce(u_bsdf, Transport::Radiance) else {
                 break;
             };
-            let wi = frame.to_world(s.wi);
-            let reflected = (s.wi.z > 0.0) == (wo.z > 0.0);
-            let same_side = (wi.dot(ng) > 0.0) == wo_side;
-            if same_side != reflected || s.weight.is_black() {
-                break;
-            }
-            if reflected {
+            if b.reflected {
                 stats.reflected += 1;
             } else {
                 stats.refracted += 1;
             }
-            beta *= s.weight;
-            last = (!s.delta).then_some((hit.point, s.pdf));
-            let (next, leaving) = spawn_ray(&hit, wi.normalize());
-            ray = next;
-            from = Some(leaving);
+            beta *= b.sample.weight;
+            last = (!b.sample.delta).then_some((v.hit.point, b.sample.pdf));
+            ray = b.ray;
+            from = Some(b.from);
 
             if depth + 1 >= self.rr_depth {
                 let q = beta.max_channel().min(0.95);
@@ -162,58 +141,6 @@ impl PathTracer {
             }
         }
         l
-    }
-
-    /// Direct light at `hit` by light sampling, MIS-weighted against the BSDF: `f·Le·w / p`.
-    #[allow(clippy::too_many_arguments)]
-    fn light(
-        &self,
-        scene: &Scene,
-        hit: &SurfaceHit,
-        bsdf: &crate::bsdf::Bsdf,
-        frame: &Frame,
-        ng: Vec3,
-        wo: Vec3,
-        (u_pick, u): (f32, glam::Vec2),
-        stats: &mut RayStats,
-    ) -> Rgb {
-        let Some(s) = scene.emitters.sample(&scene.lights, hit.point, u_pick, u) else {
-            return Rgb::BLACK;
-        };
-        let wi = frame.to_local(s.wi);
-        // The light must be on the side of the surface the shading frame says it is.
-        if (s.wi.dot(ng) > 0.0) != (wi.z > 0.0) {
-            return Rgb::BLACK;
-        }
-        let f = bsdf.eval(wo, wi, Transport::Radiance);
-        if f.is_black() {
-            return Rgb::BLACK;
-        }
-        let le = if s.distance.is_infinite() && !s.delta {
-            scene.background_along(s.wi)
-        } else {
-            s.radiance
-        };
-        if le.is_black() {
-            return Rgb::BLACK;
-        }
-        stats.shadow += 1;
-        let (ray, from) = spawn_ray(hit, s.wi);
-        // Stop short of the light's own surface.
-        let t_max = if s.distance.is_finite() {
-            s.distance * (1.0 - 1e-4)
-        } else {
-            f32::INFINITY
-        };
-        if scene.occlusion(&ray, t_max, Some(from), &mut stats.traversal, |_, _| true) {
-            return Rgb::BLACK;
-        }
-        let w = if s.delta {
-            1.0
-        } else {
-            power_heuristic(s.pdf, bsdf.pdf(wo, wi))
-        };
-        f * le * (w / s.pdf)
     }
 }
 

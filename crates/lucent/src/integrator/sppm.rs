@@ -1,0 +1,439 @@
+//! Stochastic progressive photon mapping (Hachisuka & Jensen 2009): caustics, even from point
+//! lights through glass, which no path traced from the camera can find.
+//!
+//! Each iteration has two passes.
+//!
+//! 1. **Camera pass**: one path per pixel follows mirror and glass bounces to the first surface
+//!    that is not a perfect mirror or perfect glass, its *visible point*; there direct light is
+//!    gathered by light sampling (as the path tracer does, without MIS: the camera path ends),
+//!    and what the path saw emitting along the way is added too.
+//! 2. **Photon pass**: photons leave the lights ([`crate::light::emission`]) and scatter by the
+//!    same BSDFs (in importance mode). Where one lands on a non-delta surface after at least one
+//!    bounce — the first landing is direct light, already gathered — every visible point within
+//!    its radius of the landing takes `Φ·f(wo, wi)`.
+//!
+//! Then each visible point's statistics are updated as the paper says: with `M` new photons,
+//! `N' = N + αM`, `R' = R·√(N'/(N + M))`, `τ' = (τ + β·Φ)·R'²/R²` (α = 2/3), so the radius
+//! shrinks and the estimate converges. After `K` iterations with `n` photons each, a pixel is
+//! `Σ L_direct / K + τ / (K·n·π·R²)`.
+//!
+//! Unlike the other integrators this one is not a function of one camera ray: its estimate
+//! depends on the visible points of every pixel, so it owns its progressive loop
+//! ([`render_sppm`]), driven by the renderer. Deterministic: each camera path and each photon
+//! draws from a [`Sampler`] keyed by (seed, pixel or photon, iteration), photons are traced in
+//! fixed chunks whose deposits are added in chunk order, and the grid of visible points is
+//! filled in pixel order — so the image does not depend on the number of threads.
+
+use super::RayStats;
+use super::vertex::Vertex;
+use crate::Rgb;
+use crate::bsdf::Transport;
+use crate::film::Film;
+use crate::render::{Hooks, RenderSettings, RenderStats, Rendered};
+use crate::sampling::sobol::Sampler;
+use crate::scene::Scene;
+use glam::Vec3;
+use rayon::prelude::*;
+use std::sync::atomic::Ordering;
+use std::time::Instant;
+
+/// Settings of the photon mapper.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sppm {
+    /// The deepest bounce of camera paths (through mirrors and glass) and of photons.
+    pub max_depth: u32,
+    /// Photons per iteration; 0 traces one per pixel.
+    pub photons: u32,
+    /// The visible points' first radius in scene units; 0 takes three pixels' width at the
+    /// distance of the scene's centre.
+    pub radius: f32,
+}
+
+impl Default for Sppm {
+    fn default() -> Self {
+        Self {
+            max_depth: 10,
+            photons: 0,
+            radius: 0.0,
+        }
+    }
+}
+
+/// How fast the radius shrinks (the paper's α): the share of new photons kept.
+const ALPHA: f32 = 2.0 / 3.0;
+/// Photons traced together, whose deposits are added in order (fixed, for determinism).
+const CHUNK: usize = 4096;
+/// Salt that keeps photon samplers apart from camera samplers.
+const PHOTON_SALT: u64 = 0x5eed_f070_0f07_0f07;
+
+/// A pixel's running estimate.
+#[derive(Clone, Copy, Debug)]
+struct PixelState {
+    /// Sum of direct light over iterations.
+    direct: Rgb,
+    /// Accumulated flux (the paper's τ).
+    tau: Rgb,
+    /// Photon count (N).
+    n: f32,
+    /// Gather radius.
+    radius: f32,
+}
+
+/// The visible point of a pixel in the current iteration.
+struct VisiblePoint {
+    vertex: Vertex,
+    /// Throughput from the camera.
+    beta: Rgb,
+}
+
+/// Renders with the photon mapper: `settings.spp` iterations (or fewer when stopped or out of
+/// time); the film holds each pixel's estimate as that many samples.
+pub fn render_sppm(
+    scene: &Scene,
+    settings: &RenderSettings,
+    sppm: &Sppm,
+    hooks: &Hooks,
+    begin: Instant,
+) -> Rendered {
+    let (width, height) = (scene.camera.width(), scene.camera.height());
+    let pixels = width as usize * height as usize;
+    let radius = if sppm.radius > 0.0 {
+        sppm.radius
+    } else {
+        let b = scene.bounds();
+        let distance = if b.is_empty() {
+            1.0
+        } else {
+            (b.center() - scene.camera.eye()).length().max(1e-3)
+        };
+        3.0 * scene.camera.pixel_angle() * distance
+    };
+    let photons = if sppm.photons == 0 {
+        pixels
+    } else {
+        sppm.photons as usize
+    };
+    let mut state = vec![
+        PixelState {
+            direct: Rgb::BLACK,
+            tau: Rgb::BLACK,
+            n: 0.0,
+            radius,
+        };
+        pixels
+    ];
+    let deadline = settings.time_limit.map(|t| begin + t);
+    let mut stats = RayStats::default();
+    let mut iterations = 0u32;
+    let total = u64::from(settings.spp) * pixels as u64;
+    while iterations < settings.spp {
+        if hooks.cancel.load(Ordering::Relaxed) || deadline.is_some_and(|d| Instant::now() >= d) {
+            break;
+        }
+        let k = iterations;
+        // 1. Camera pass: a visible point and the direct light per pixel. (A stop request
+        // ends the render between iterations: one takes well under a second.)
+        let camera: Vec<(Option<VisiblePoint>, Rgb, RayStats)> = (0..pixels)
+            .into_par_iter()
+            .map(|i| camera_path(scene, settings.seed, sppm, i, k, width))
+            .collect();
+        let mut points = Vec::with_capacity(pixels);
+        for (i, (vp, direct, s)) in camera.into_iter().enumerate() {
+            state[i].direct += direct;
+            stats += s;
+            points.push(vp);
+        }
+        // 2. Photon pass: deposits near the visible points, chunk by chunk in order.
+        let grid = Grid::new(&points, &state);
+        let chunks: Vec<(Vec<(u32, Rgb)>, RayStats)> = (0..photons.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let mut deposits = Vec::new();
+                let mut s = RayStats::default();
+                for p in c * CHUNK..((c + 1) * CHUNK).min(photons) {
+                    trace_photon(
+                        scene,
+                        settings.seed,
+                        sppm,
+                        p,
+                        k,
+                        &grid,
+                        &points,
+                        &state,
+                        &mut deposits,
+                        &mut s,
+                    );
+                }
+                (deposits, s)
+            })
+            .collect();
+        let mut flux = vec![Rgb::BLACK; pixels];
+        let mut count = vec![0u32; pixels];
+        for (deposits, s) in chunks {
+            stats += s;
+            for (i, phi) in deposits {
+                flux[i as usize] += phi;
+                count[i as usize] += 1;
+            }
+        }
+        // 3. Shrink the radii where photons arrived.
+        for (i, st) in state.iter_mut().enumerate() {
+            let m = count[i] as f32;
+            if m == 0.0 {
+                continue;
+            }
+            let beta = points[i].as_ref().map_or(Rgb::BLACK, |p| p.beta);
+            let n = st.n + ALPHA * m;
+            let r = st.radius * (n / (st.n + m)).sqrt();
+            st.tau = (st.tau + beta * flux[i]) * ((r * r) / (st.radius * st.radius));
+            st.n = n;
+            st.radius = r;
+        }
+        iterations += 1;
+        let done = u64::from(iterations) * pixels as u64;
+        (hooks.progress)(done, total);
+    }
+
+    let mut film = Film::new(width, height);
+    let k = iterations.max(1) as f32;
+    let photons_total = f64::from(iterations) * photons as f64;
+    for y in 0..height {
+        for x in 0..width {
+            let st = &state[(y * width + x) as usize];
+            let area = std::f64::consts::PI * f64::from(st.radius) * f64::from(st.radius);
+            let indirect = if photons_total > 0.0 {
+                st.tau * (1.0 / (photons_total * area)) as f32
+            } else {
+                Rgb::BLACK
+            };
+            let value = st.direct / k + indirect;
+            let finite = value.is_finite();
+            stats.nonfinite += u64::from(!finite && iterations > 0);
+            for _ in 0..iterations {
+                film.add_sample(x, y, finite.then_some(value), 1.0);
+            }
+        }
+    }
+    let complete = iterations == settings.spp
+        || (deadline.is_some_and(|d| Instant::now() >= d) && !hooks.cancel.load(Ordering::Relaxed));
+    Rendered {
+        film,
+        stats: RenderStats {
+            rays: stats,
+            samples: u64::from(iterations) * pixels as u64,
+            elapsed: begin.elapsed(),
+            threads: rayon::current_num_threads(),
+        },
+        complete,
+        timed_out: complete && iterations < settings.spp,
+        samples_range: (iterations, iterations),
+        density: Vec::new(),
+    }
+}
+
+/// The camera path of pixel `i` in iteration `k`: its visible point (if it reaches one) and
+/// the light it gathers directly.
+fn camera_path(
+    scene: &Scene,
+    seed: u64,
+    sppm: &Sppm,
+    i: usize,
+    k: u32,
+    width: u32,
+) -> (Option<VisiblePoint>, Rgb, RayStats) {
+    let mut stats = RayStats::default();
+    let mut sampler = Sampler::new(seed, i as u64, k);
+    let (x, y) = ((i % width as usize) as f32, (i / width as usize) as f32);
+    let u = sampler.next_2d();
+    let lens = sampler.next_2d();
+    let mut ray = scene.camera.ray_through_lens(x + u.x, y + u.y, lens);
+    stats.camera += 1;
+    let mut from = None;
+    let mut beta = Rgb::WHITE;
+    let mut direct = Rgb::BLACK;
+    for depth in 0..=sppm.max_depth {
+        let u_light = (sampler.next_1d(), sampler.next_2d());
+        let u_bsdf = (sampler.next_1d(), sampler.next_2d());
+        let Some(hit) = scene.intersect_from(&ray, from, &mut stats.traversal) else {
+            direct += beta * scene.background_along(ray.dir);
+            break;
+        };
+        let m = &scene.materials[hit.material as usize];
+        if !m.ke.is_black() && hit.normal.dot(ray.dir) < 0.0 {
+            direct += beta * m.ke;
+        }
+        let v = Vertex::new(scene, ray.dir, hit);
+        if !v.bsdf.is_delta() {
+            direct += beta * v.direct_light(scene, u_light, false, &mut stats);
+            return (Some(VisiblePoint { vertex: v, beta }), direct, stats);
+        }
+        if depth == sppm.max_depth {
+            break;
+        }
+        let Some(b) = v.bounce(u_bsdf, Transport::Radiance) else {
+            break;
+        };
+        if b.reflected {
+            stats.reflected += 1;
+        } else {
+            stats.refracted += 1;
+        }
+        beta *= b.sample.weight;
+        ray = b.ray;
+        from = Some(b.from);
+    }
+    (None, direct, stats)
+}
+
+/// Traces photon `p` of iteration `k`, recording `(pixel, Φ·f)` for every visible point it
+/// lands near.
+#[allow(clippy::too_many_arguments)]
+fn trace_photon(
+    scene: &Scene,
+    seed: u64,
+    sppm: &Sppm,
+    p: usize,
+    k: u32,
+    grid: &Grid,
+    points: &[Option<VisiblePoint>],
+    state: &[PixelState],
+    deposits: &mut Vec<(u32, Rgb)>,
+    stats: &mut RayStats,
+) {
+    let mut sampler = Sampler::new(seed ^ PHOTON_SALT, p as u64, k);
+    let (u_pick, u_pos, u_dir) = (sampler.next_1d(), sampler.next_2d(), sampler.next_2d());
+    let Some(photon) = scene.emitters.sample_photon(
+        &scene.lights,
+        scene.bounds(),
+        |d| scene.background_along(d),
+        u_pick,
+        u_pos,
+        u_dir,
+    ) else {
+        return;
+    };
+    let mut beta = photon.power;
+    let mut ray = lucent_accel::Ray::new(photon.origin, photon.dir);
+    let mut from = None;
+    for depth in 0..=sppm.max_depth {
+        let u_bsdf = (sampler.next_1d(), sampler.next_2d());
+        let u_rr = sampler.next_1d();
+        stats.photons += 1;
+        let Some(hit) = scene.intersect_from(&ray, from, &mut stats.traversal) else {
+            return;
+        };
+        let v = Vertex::new(scene, ray.dir, hit);
+        if depth > 0 && !v.bsdf.is_delta() {
+            grid.gather(v.hit.point, |i| {
+                let Some(vp) = &points[i as usize] else {
+                    return;
+                };
+                let d2 = (vp.vertex.hit.point - v.hit.point).length_squared();
+                let r = state[i as usize].radius;
+                if d2 <= r * r {
+                    let f = vp.vertex.bsdf_value(-ray.dir, Transport::Radiance);
+                    if !f.is_black() {
+                        deposits.push((i, beta * f));
+                    }
+                }
+            });
+        }
+        if depth == sppm.max_depth {
+            return;
+        }
+        let Some(b) = v.bounce(u_bsdf, Transport::Importance) else {
+            return;
+        };
+        let next = beta * b.sample.weight;
+        // Russian roulette in proportion to what the bounce kept (pbrt's rule).
+        let q = (1.0 - next.max_channel() / beta.max_channel().max(1e-30)).max(0.0f32);
+        if u_rr < q {
+            return;
+        }
+        beta = next / (1.0 - q);
+        ray = b.ray;
+        from = Some(b.from);
+    }
+}
+
+/// A hashed grid over the visible points: each point is listed in every cell its radius
+/// reaches, so a photon looks in one cell only.
+struct Grid {
+    cell: f32,
+    origin: Vec3,
+    buckets: Vec<Vec<u32>>,
+}
+
+impl Grid {
+    fn new(points: &[Option<VisiblePoint>], state: &[PixelState]) -> Self {
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut r_max = 0.0f32;
+        let mut n = 0usize;
+        for (p, st) in points.iter().zip(state) {
+            if let Some(p) = p {
+                lo = lo.min(p.vertex.hit.point);
+                r_max = r_max.max(st.radius);
+                n += 1;
+            }
+        }
+        let cell = (2.0 * r_max).max(1e-6);
+        let mut grid = Self {
+            cell,
+            origin: if n > 0 { lo } else { Vec3::ZERO },
+            buckets: vec![Vec::new(); (2 * n).next_power_of_two().max(1)],
+        };
+        for (i, (p, st)) in points.iter().zip(state).enumerate() {
+            let Some(p) = p else { continue };
+            let (a, b) = (
+                grid.cell_of(p.vertex.hit.point - Vec3::splat(st.radius)),
+                grid.cell_of(p.vertex.hit.point + Vec3::splat(st.radius)),
+            );
+            for z in a[2]..=b[2] {
+                for y in a[1]..=b[1] {
+                    for x in a[0]..=b[0] {
+                        let h = grid.bucket([x, y, z]);
+                        grid.buckets[h].push(i as u32);
+                    }
+                }
+            }
+        }
+        grid
+    }
+
+    fn cell_of(&self, p: Vec3) -> [i32; 3] {
+        let c = ((p - self.origin) / self.cell).floor();
+        [c.x as i32, c.y as i32, c.z as i32]
+    }
+
+    fn bucket(&self, c: [i32; 3]) -> usize {
+        let h = (c[0] as u32).wrapping_mul(73_856_093)
+            ^ (c[1] as u32).wrapping_mul(19_349_663)
+            ^ (c[2] as u32).wrapping_mul(83_492_791);
+        h as usize & (self.buckets.len() - 1)
+    }
+
+    /// Calls `visit` with every visible point listed in the cell of `p` (a superset of those
+    /// whose radius reaches `p`).
+    fn gather(&self, p: Vec3, mut visit: impl FnMut(u32)) {
+        if !p.is_finite() {
+            return;
+        }
+        for &i in &self.buckets[self.bucket(self.cell_of(p))] {
+            visit(i);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_radius_shrinks_as_the_paper_says() {
+        // N = 0, M = 3 photons: N' = 2, R' = R·√(2/3).
+        let (n, m, r) = (0.0f32, 3.0f32, 1.0f32);
+        let n2 = n + ALPHA * m;
+        assert!((n2 - 2.0).abs() < 1e-6);
+        assert!((r * (n2 / (n + m)).sqrt() - (2.0f32 / 3.0).sqrt()).abs() < 1e-6);
+    }
+}
