@@ -190,6 +190,17 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
             IntegratorArg::DebugBarycentrics => IntegratorName::DebugBarycentrics,
             IntegratorArg::DebugCost => IntegratorName::DebugCost,
         };
+        // The file's settings of another integrator no longer apply.
+        let r = &mut d.render;
+        if r.integrator != IntegratorName::Whitted {
+            r.shadows = None;
+        }
+        if r.integrator != IntegratorName::Path {
+            r.rr_depth = None;
+        }
+        if r.integrator != IntegratorName::Sppm {
+            (r.photons, r.photon_radius) = (None, None);
+        }
     }
     if let Some(m) = o.max_depth {
         d.render.max_depth = from_flag(m);
