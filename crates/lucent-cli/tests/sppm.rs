@@ -88,7 +88,7 @@ fn what_photon_mapping_cannot_do_is_refused() {
 fn a_stopped_photon_mapper_writes_its_image() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("caustic.pfm");
-    let mut child = lucent()
+    let child = lucent()
         .arg("render")
         .arg(workspace().join("examples/caustic.toml"))
         .args(["--width", "40", "--height", "30", "--spp", "100000", "-o"])
