@@ -31,6 +31,31 @@ fn the_caustic_examples_render_with_their_caustic() {
 }
 
 #[test]
+fn a_time_limit_ends_the_photon_mapper_between_iterations() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c.pfm");
+    let output = lucent()
+        .arg("render")
+        .arg(workspace().join("examples/caustic.toml"))
+        .args([
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--time-limit",
+            "0.5",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_success(&output);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("spp in the time limit"), "{stdout}");
+    assert!(read_pfm(&out).pixels.iter().flatten().any(|&c| c > 0.0));
+}
+
+#[test]
 fn classic_lights_fall_off_physically_and_filters_become_the_box() {
     let output = lucent()
         .args([
