@@ -338,7 +338,7 @@ pub fn render(
         let start = lock(&film).region(tile.x0, tile.y0, w, h);
         let (tile_stats, samples, splats) =
             render_tile_splats(scene, settings, tile, to, &start, hooks.cancel);
-        {
+        if let Some(splats) = splats {
             let mut c = commits.lock().unwrap_or_else(|e| e.into_inner());
             c.commit(index, splats, &mut lock(&film));
         }
@@ -544,7 +544,7 @@ fn render_tile(
 
 /// Traces the samples of every pixel of `tile` from the counts in `start` (the tile's region of
 /// the film) up to index `upto`, splatting them into a film of the tile and its margin; stops
-/// between samples when cancelled, and between pixels past the deadline.
+/// between pixels past the deadline, and between samples when cancelled — then with no film.
 fn render_tile_splats(
     scene: &Scene,
     settings: &RenderSettings,
@@ -552,7 +552,7 @@ fn render_tile_splats(
     (upto, deadline): (u32, Option<Instant>),
     start: &Film,
     cancel: &AtomicBool,
-) -> (RayStats, u64, TileSplats) {
+) -> (RayStats, u64, Option<TileSplats>) {
     let mut stats = RayStats::default();
     let mut taken = 0;
     let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
@@ -562,12 +562,14 @@ fn render_tile_splats(
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
-                return (stats, taken, splats);
+                return (stats, taken, Some(splats));
             }
             let pixel = u64::from(y) * width + u64::from(x);
             for s in start.samples(x - tile.x0, y - tile.y0)..upto {
                 if cancel.load(Ordering::Relaxed) {
-                    return (stats, taken, splats);
+                    // A tile cut short is not added: the image keeps whole tiles in tile order,
+                    // which is what a resumed render continues from.
+                    return (stats, taken, None);
                 }
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
                 // Uniform in the pixel: the filter weighs the sample where it lands.
@@ -594,7 +596,7 @@ fn render_tile_splats(
             }
         }
     }
-    (stats, taken, splats)
+    (stats, taken, Some(splats))
 }
 
 /// The camera ray of sample `s` of pixel `(x, y)` (index `pixel`), and its film weight.

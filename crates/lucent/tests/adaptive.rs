@@ -1,17 +1,18 @@
 //! Whitted's adaptive supersampling: every corner traced once, the depth limit, the two
 //! extreme thresholds, and the same image on any number of threads or tile size.
 
+mod common;
+
 use glam::Vec3;
 use lucent::Rgb;
 use lucent::camera::Camera;
 use lucent::integrator::Integrator;
 use lucent::material::Material;
-use lucent::render::{Hooks, RenderSettings, Rendered, Sampling, render};
+use lucent::render::{RenderSettings, Rendered, Sampling};
 use lucent::sampling::sobol::Sampler;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::schedule::adaptive::Adaptive;
 use lucent::shape::Sphere;
-use std::sync::atomic::AtomicBool;
 
 const W: u32 = 23;
 const H: u32 = 17;
@@ -48,13 +49,7 @@ fn render_with(scene: &Scene, a: Adaptive, threads: usize, tile: u32) -> Rendere
         sampling: Sampling::Adaptive(a),
         ..RenderSettings::default()
     };
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
-    render(scene, &settings, None, &hooks).unwrap()
+    common::render_all(scene, &settings)
 }
 
 /// Corners a pixel uses when split at every level down to `depth`.

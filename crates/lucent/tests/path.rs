@@ -51,13 +51,7 @@ fn film_filtered(
         filter_sampling,
         ..RenderSettings::default()
     };
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
-    render(scene, &settings, None, &hooks).unwrap().film
+    common::render_all(scene, &settings).film
 }
 
 /// A unit sphere of `material` seen whole by a `size`² camera, inside a constant environment

@@ -12,10 +12,9 @@ use lucent::film::Film;
 use lucent::integrator::{Integrator, PathTracer, Sppm};
 use lucent::light::{Falloff, Light, PointLight, SpotLight};
 use lucent::material::{Material, Surface};
-use lucent::render::{Hooks, RenderSettings, render};
+use lucent::render::RenderSettings;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::{Plane, Sphere};
-use std::sync::atomic::AtomicBool;
 
 fn film_of(scene: &Scene, integrator: Integrator, spp: u32, threads: usize) -> Film {
     let settings = RenderSettings {
@@ -25,13 +24,7 @@ fn film_of(scene: &Scene, integrator: Integrator, spp: u32, threads: usize) -> F
         seed: 3,
         ..RenderSettings::default()
     };
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
-    render(scene, &settings, None, &hooks).unwrap().film
+    common::render_all(scene, &settings).film
 }
 
 fn diffuse(albedo: f32) -> Material {

@@ -1,12 +1,13 @@
 //! Lambert: ideal diffuse reflection, `f = albedo/π` (Mitsuba 3 `diffuse`), and the
 //! cosine-weighted hemisphere sampling that other diffuse lobes share.
 
-use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
+use std::f32::consts::FRAC_1_PI;
 
 use glam::{Vec2, Vec3};
 
 use super::BsdfSample;
 use crate::Rgb;
+use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 
 /// The Lambert variant's parameters.
 pub(super) struct Lambert {
@@ -43,37 +44,18 @@ impl Lambert {
     }
 }
 
-/// A direction in the upper hemisphere with density `cos θ/π`, by Malley's method: a uniform
-/// point on the unit disc (Shirley & Chiu's concentric map, which keeps strata compact) lifted
-/// to the hemisphere, `z = √(1 − x² − y²)`. `None` for the measure-zero points on the rim,
-/// where `z = 0` and the density vanishes.
+/// A direction in the upper hemisphere with density `cos θ/π`
+/// ([`square_to_cosine_hemisphere`]: Malley's method over the concentric disc); `None` for the
+/// measure-zero points on the rim, where `z = 0` and the density vanishes.
 pub(super) fn sample_cosine(u: Vec2) -> Option<Vec3> {
-    let d = concentric_disc(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    (z > 0.0).then(|| Vec3::new(d.x, d.y, z))
+    let w = square_to_cosine_hemisphere(u);
+    (w.z > 0.0).then_some(w)
 }
 
 /// The density of [`sample_cosine`]: `max(cos θ, 0)/π`.
 #[inline]
 pub(super) fn cosine_pdf(w: Vec3) -> f32 {
-    w.z.max(0.0) * FRAC_1_PI
-}
-
-/// Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square": the square `[−1, 1]²`
-/// to the unit disc, concentric squares to concentric circles. In the wedge where `|a| > |b|`,
-/// `r = a`, `φ = (π/4)·b/a`; in the other, `r = b`, `φ = π/2 − (π/4)·a/b`.
-fn concentric_disc(u: Vec2) -> Vec2 {
-    let o = 2.0 * u - Vec2::ONE;
-    if o == Vec2::ZERO {
-        return Vec2::ZERO;
-    }
-    let (r, phi) = if o.x.abs() > o.y.abs() {
-        (o.x, FRAC_PI_4 * (o.y / o.x))
-    } else {
-        (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
-    };
-    let (s, c) = phi.sin_cos();
-    Vec2::new(r * c, r * s)
+    cosine_hemisphere_pdf(w.z)
 }
 
 #[cfg(test)]
@@ -107,16 +89,5 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn the_concentric_map_stays_in_the_disc() {
-        for i in 0..=32 {
-            for j in 0..=32 {
-                let d = concentric_disc(Vec2::new(i as f32 / 32.0, j as f32 / 32.0));
-                assert!(d.length() <= 1.0 + 1e-6, "{d}");
-            }
-        }
-        assert_eq!(concentric_disc(Vec2::splat(0.5)), Vec2::ZERO);
     }
 }

@@ -119,14 +119,9 @@ impl PathTracer {
             if !v.bsdf.is_delta() {
                 l += beta * v.direct_light(scene, u_light, true, stats);
             }
-            let Some(b) = v.bounce(u_bsdf, Transport::Radiance) else {
+            let Some(b) = v.bounce(u_bsdf, Transport::Radiance, stats) else {
                 break;
             };
-            if b.reflected {
-                stats.reflected += 1;
-            } else {
-                stats.refracted += 1;
-            }
             beta *= b.sample.weight;
             last = (!b.sample.delta).then_some((v.hit.point, b.sample.pdf));
             ray = b.ray;

@@ -270,14 +270,9 @@ fn camera_path(
         if depth == sppm.max_depth {
             break;
         }
-        let Some(b) = v.bounce(u_bsdf, Transport::Radiance) else {
+        let Some(b) = v.bounce(u_bsdf, Transport::Radiance, &mut stats) else {
             break;
         };
-        if b.reflected {
-            stats.reflected += 1;
-        } else {
-            stats.refracted += 1;
-        }
         beta *= b.sample.weight;
         ray = b.ray;
         from = Some(b.from);
@@ -341,7 +336,8 @@ fn trace_photon(
         if depth == sppm.max_depth {
             return;
         }
-        let Some(b) = v.bounce(u_bsdf, Transport::Importance) else {
+        // Photon bounces count as photon rays (at the next intersection), not as these.
+        let Some(b) = v.bounce(u_bsdf, Transport::Importance, &mut RayStats::default()) else {
             return;
         };
         let next = beta * b.sample.weight;

@@ -123,9 +123,15 @@ impl Vertex {
         f * le * (w / s.pdf)
     }
 
-    /// The next direction, drawn from the BSDF with `(u_lobe, u)`, and the ray along it; `None`
-    /// when nothing scatters, or a direction would leak through the surface.
-    pub fn bounce(&self, (u_lobe, u): (f32, Vec2), mode: Transport) -> Option<Bounce> {
+    /// The next direction, drawn from the BSDF with `(u_lobe, u)`, and the ray along it (counted
+    /// as reflected or refracted in `stats`); `None` when nothing scatters, or a direction would
+    /// leak through the surface.
+    pub fn bounce(
+        &self,
+        (u_lobe, u): (f32, Vec2),
+        mode: Transport,
+        stats: &mut RayStats,
+    ) -> Option<Bounce> {
         let s = self.bsdf.sample(self.wo, u_lobe, u, mode)?;
         let wi = self.frame.to_world(s.wi);
         let reflected = (s.wi.z > 0.0) == (self.wo.z > 0.0);
@@ -134,6 +140,11 @@ impl Vertex {
             return None;
         }
         let (ray, from) = spawn_ray(&self.hit, wi.normalize());
+        if reflected {
+            stats.reflected += 1;
+        } else {
+            stats.refracted += 1;
+        }
         Some(Bounce {
             sample: s,
             ray,

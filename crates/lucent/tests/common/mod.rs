@@ -5,8 +5,10 @@ use glam::Vec3;
 use lucent::Rgb;
 use lucent::camera::Camera;
 use lucent::material::Material;
+use lucent::render::{Hooks, RenderSettings, Rendered, render};
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::{Mesh, Sphere};
+use std::sync::atomic::AtomicBool;
 
 /// A camera that no test looks through.
 pub fn any_camera() -> Camera {
@@ -107,4 +109,15 @@ pub fn unit_vector(u: f32, v: f32) -> Vec3 {
     let r = (1.0 - z * z).max(0.0).sqrt();
     let phi = std::f32::consts::TAU * v;
     Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Renders `scene` with `settings` to the end: no cancellation, progress or checkpoints.
+pub fn render_all(scene: &Scene, settings: &RenderSettings) -> Rendered {
+    let cancel = AtomicBool::new(false);
+    let hooks = Hooks {
+        cancel: &cancel,
+        progress: &|_, _| {},
+        checkpoint: None,
+    };
+    render(scene, settings, None, &hooks).unwrap()
 }
