@@ -341,7 +341,7 @@ fn size(s: &str) -> Result<(u32, u32), String> {
 /// A positive, finite number of seconds (at most a year).
 fn positive_seconds(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
-        Ok(v) if v > 0.0 && v <= 3.2e7 => Ok(v),
+        Ok(v) if v > 0.0 && v <= f64::from(lucent_scene::build::MAX_TIME_LIMIT) => Ok(v),
         _ => Err(format!(
             "expected a positive number of seconds (at most a year), got `{s}`"
         )),

@@ -86,6 +86,31 @@ fn a_time_limit_ends_the_render_with_its_image() {
     // No checkpoint is left: the render is finished.
     assert!(!dir.path().join("box.pfm.checkpoint").exists());
 
+    // However short the limit, the first pass is whole: no pixel is left black.
+    let output = lucent()
+        .arg("render")
+        .arg(workspace().join("examples/cornell-box.xml"))
+        .args([
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "--time-limit",
+            "0.000001",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_success(&output);
+    let image = read_pfm(&out);
+    let dark = image
+        .pixels
+        .iter()
+        .filter(|p| p.iter().sum::<f32>() == 0.0)
+        .count();
+    assert!(dark < 4, "{dark} black pixels after the shortest limit");
+
     // With --spp as well, whichever comes first ends it: here the samples.
     let output = lucent()
         .arg("render")

@@ -382,14 +382,14 @@ pub fn render(
             let start_samples = lock(&film).sample_range().0;
             let mut upto = start_samples;
             while upto < settings.spp {
+                let taken = upto - start_samples;
                 let step = match deadline {
                     None => PASS_SAMPLES - upto % PASS_SAMPLES,
                     Some(d) => {
                         let now = Instant::now();
-                        if now >= d {
+                        if now >= d && taken > 0 {
                             break;
                         }
-                        let taken = upto - start_samples;
                         if taken == 0 {
                             1
                         } else {
@@ -400,7 +400,8 @@ pub fn render(
                     }
                 };
                 upto = settings.spp.min(upto + step);
-                let to = (upto, deadline);
+                // The first pass is whole, however short the limit: every pixel gets a sample.
+                let to = (upto, deadline.filter(|_| taken > 0));
                 if splat {
                     commits.lock().unwrap_or_else(|e| e.into_inner()).new_pass();
                     work.par_iter()

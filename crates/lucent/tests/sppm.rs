@@ -135,7 +135,8 @@ fn the_caustic_of_a_glass_ball_carries_the_light_that_passes_through_it() {
     assert!(std::f32::consts::PI * film.pixel(24, 24).g / rho > 2.0 * intensity / 64.0);
 }
 
-/// A small box room with a glass ball, lit by a small square lamp in the ceiling.
+/// A small box room with a glass ball and a half-mirror ball, lit by a square lamp in the
+/// ceiling.
 fn room(size: u32) -> Scene {
     let camera = Camera::new(
         Vec3::new(0.0, 0.0, 3.4),
@@ -159,6 +160,20 @@ fn room(size: u32) -> Scene {
         ..Material::default()
     });
     let ball = b.material(glass());
+    // A Whitted material mixing a mirror with a diffuse colour: the photon mapper follows the
+    // mirror and gathers the diffuse share.
+    let mixed = b.material(Material {
+        kd: Rgb::new(0.1, 0.3, 0.5).into(),
+        kr: Rgb::gray(0.5),
+        ..Material::default()
+    });
+    b.sphere(
+        Sphere {
+            center: Vec3::new(-0.5, -0.7, -0.3),
+            radius: 0.3,
+        },
+        mixed,
+    );
     for (p, n, m) in [
         (Vec3::new(0.0, -1.0, 0.0), Vec3::Y, white),
         (Vec3::new(0.0, 1.0, 0.0), Vec3::NEG_Y, white),

@@ -43,6 +43,8 @@ pub const RADIUS_RANGE: std::ops::RangeInclusive<f32> = 1e-8..=1e15;
 pub const MAX_SAMPLES: u32 = 1 << 20;
 /// Deepest recursion allowed.
 pub const MAX_DEPTH: u32 = 1000;
+/// The longest time limit, in seconds: a year.
+pub const MAX_TIME_LIMIT: f32 = 365.0 * 24.0 * 3600.0;
 
 /// A scene ready to render, with the render settings its file gives.
 #[derive(Clone, Debug)]
@@ -157,6 +159,12 @@ pub fn build_with_files(
             }
         })
         .map_err(|e| source.error(desc.camera.span(), e.to_string()))?;
+    if cam.aperture.is_some_and(|a| a.0 > 0.0) && settings.sampling != Sampling::Uniform {
+        return Err(source.error(
+            desc.camera.span(),
+            "a thin lens (`aperture`) needs uniform sampling: adaptive corners are traced through a pinhole",
+        ));
+    }
     if cam.focus_distance.is_some() && cam.aperture.is_none() {
         return Err(source.error(
             desc.camera.span(),
@@ -392,12 +400,18 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
     if integrator.is_stochastic() && sampling != Sampling::Uniform {
         return Err(source.error(
             0..0,
-            "adaptive and quadtree sampling compare corners traced once: they need a deterministic integrator (raycast, whitted or a debug view), not path",
+            format!(
+                "adaptive and quadtree sampling compare corners traced once: they need a deterministic integrator (raycast, whitted or a debug view), not {}",
+                integrator.name()
+            ),
         ));
     }
     let time_limit = match &r.time_limit {
-        Some(t) if !(t.get_ref().0 > 0.0 && t.get_ref().0 <= 1e7) => {
-            return Err(source.error(t.span(), "time_limit must be a positive number of seconds"));
+        Some(t) if !(t.get_ref().0 > 0.0 && t.get_ref().0 <= MAX_TIME_LIMIT) => {
+            return Err(source.error(
+                t.span(),
+                "time_limit must be a positive number of seconds, at most a year",
+            ));
         }
         Some(t) if sampling != Sampling::Uniform => {
             return Err(source.error(t.span(), "time_limit needs uniform sampling"));

@@ -9,9 +9,9 @@
 //!   instead under total internal reflection (as the Whitted integrator gives `kt` to the
 //!   reflected ray).
 //!
-//! The coefficients are used as given — no Fresnel, nothing keeps their sum at or below one —
-//! so a Whitted scene with `kd + ks + kr + kt > 1` adds energy at every bounce, as it did under
-//! the Whitted integrator; the albedo of a bounce is at most `kd + ks + kr + kt` per channel.
+//! The coefficients are used as given — no Fresnel — and the albedo of a bounce is at most
+//! `kd + ks + kr + kt` per channel. This BSDF would add energy where they sum past one;
+//! [`crate::material::Material::bsdf`] scales them down together before they reach it.
 //!
 //! **Lobe choice.** Sampling picks a lobe with probability proportional to the largest channel
 //! of its coefficient. The two glossy lobes are then weighted by their mixture density (so
@@ -75,6 +75,11 @@ impl Classic {
     /// True when only the mirror and refraction lobes are left.
     pub fn is_delta(&self) -> bool {
         self.kd.is_black() && self.ks.is_black()
+    }
+
+    /// The probability that `sample` picks the mirror or the refraction lobe.
+    pub fn delta_share(&self) -> f32 {
+        self.p.map_or(0.0, |p| p[MIRROR] + p[REFRACT])
     }
 
     fn two_sided(&self) -> bool {

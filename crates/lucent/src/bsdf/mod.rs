@@ -173,7 +173,8 @@ pub enum Bsdf {
     /// The Whitted material's coefficients as lobes for a path tracer: Lambert `kd`, a
     /// normalised Phong lobe `ks` of exponent `shininess`, a mirror `kr` and a refraction `kt`
     /// through index `eta` (reflecting on total internal reflection). The coefficients are used
-    /// as given, without Fresnel: a scene whose `kd + ks + kr + kt` exceeds 1 may add energy.
+    /// as given, without Fresnel; materials scale them to sum to at most 1 before they get here
+    /// ([`crate::material::Material::bsdf`]).
     Classic {
         /// Diffuse coefficient.
         kd: Rgb,
@@ -311,6 +312,25 @@ impl Bsdf {
             Model::RoughDielectric(b) => b.is_delta(),
             Model::Plastic(b) => b.is_delta(),
             Model::Classic(b) => b.is_delta(),
+        }
+    }
+
+    /// The probability that [`Bsdf::sample`] from `wo` picks a Dirac lobe: 1 for mirrors and
+    /// smooth glass, 0 for BSDFs without one, between for mixtures (a smooth plastic's coat,
+    /// a Whitted material's `kr` and `kt` beside its `kd`).
+    pub fn delta_share(&self, wo: Vec3) -> f32 {
+        match self.model() {
+            Model::Lambert(_) | Model::RoughConductor(_) => 0.0,
+            Model::Conductor(_) | Model::Dielectric(_) => 1.0,
+            Model::RoughDielectric(b) => f32::from(u8::from(b.is_delta())),
+            Model::Plastic(b) => b.delta_share(wo),
+            Model::Classic(b) => {
+                if b.is_delta() {
+                    1.0
+                } else {
+                    b.delta_share()
+                }
+            }
         }
     }
 

@@ -77,6 +77,16 @@ impl Plastic {
         self.ggx.is_none() && self.diffuse.is_black()
     }
 
+    /// The probability that `sample` picks the smooth coat's mirror (0 for a rough coat, whose
+    /// lobe is not a Dirac delta).
+    pub fn delta_share(&self, wo: Vec3) -> f32 {
+        if self.ggx.is_some() || wo.z <= 0.0 {
+            return 0.0;
+        }
+        self.lobe_probabilities(self.fresnel(wo.z))
+            .map_or(0.0, |(spec, _)| spec)
+    }
+
     /// The coat's Fresnel reflectance at `cos θ` (from outside).
     fn fresnel(&self, cos: f32) -> f32 {
         fresnel::dielectric(cos, self.eta).r

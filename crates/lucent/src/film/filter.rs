@@ -85,6 +85,9 @@ fn gaussian_1d(x: f32, sigma: f32) -> f32 {
     (-x * x / (2.0 * sigma * sigma)).exp()
 }
 
+/// The widest filter radius, in pixels.
+pub const MAX_RADIUS: f32 = 16.0;
+
 impl Filter {
     /// The named filter with its usual parameters: `"box"` radius 0.5, `"tent"` radius 1,
     /// `"gaussian"` radius 1.5 and σ 0.5, `"mitchell"` radius 2 and `b = c = 1/3`; `None` for
@@ -94,7 +97,7 @@ impl Filter {
             "box" => Filter::Box { radius: 0.5 },
             "tent" => Filter::Tent { radius: 1.0 },
             "gaussian" => Filter::Gaussian {
-                radius: 1.5,
+                radius: 2.0,
                 sigma: 0.5,
             },
             "mitchell" => Filter::Mitchell {
@@ -132,8 +135,13 @@ impl Filter {
     pub fn validate(&self) -> Result<(), String> {
         let name = self.name();
         let r = self.radius();
-        if !(r.is_finite() && r > 0.0) {
-            return Err(format!("{name} filter: radius must be positive, not {r}"));
+        if !(r.is_finite() && r > 0.0 && r <= MAX_RADIUS) {
+            return Err(format!(
+                "{name} filter: radius must be positive and at most {MAX_RADIUS} pixels, not {r}"
+            ));
+        }
+        if self.profile(0.0) <= 0.0 {
+            return Err(format!("{name} filter: it is zero at its centre"));
         }
         match *self {
             Filter::Gaussian { sigma, .. } if !(sigma.is_finite() && sigma > 0.0) => Err(format!(
@@ -530,7 +538,7 @@ mod tests {
             );
         }
         let g = Filter::default_of("gaussian").unwrap();
-        assert_eq!(g.eval(1.5, 0.0), 0.0);
+        assert_eq!(g.eval(2.0, 0.0), 0.0);
         assert!(g.eval(0.0, 0.0) > g.eval(0.3, 0.2));
         assert!((g.eval(0.3, -0.2) - g.eval(-0.3, 0.2)).abs() < 1e-7);
         let b = Filter::default();

@@ -113,8 +113,13 @@ impl Film {
 
     /// Counts one more sample taken in pixel `(x, y)` (its value splatted apart).
     pub fn count_sample(&mut self, x: u32, y: u32) {
+        self.count_samples(x, y, 1);
+    }
+
+    /// Counts `n` more samples taken in pixel `(x, y)` (an estimate made of them, added apart).
+    pub fn count_samples(&mut self, x: u32, y: u32, n: u32) {
         let i = self.index(x, y);
-        self.samples[i] += 1;
+        self.samples[i] += n;
     }
 
     /// Adds `part` (sums, weights and counts) where its top-left pixel falls at `(x0, y0)` of

@@ -58,11 +58,15 @@ impl Default for PathTracer {
 /// The power heuristic with exponent 2 for a sample of density `a` against one of density `b`.
 #[inline]
 pub fn power_heuristic(a: f32, b: f32) -> f32 {
-    let (a2, b2) = (a * a, b * b);
-    if a2.is_infinite() {
+    // As a ratio, so that squares of huge densities cannot overflow: a²/(a²+b²) = 1/(1+(b/a)²).
+    if a.is_nan() || b.is_nan() || a <= 0.0 {
+        return 0.0;
+    }
+    if a.is_infinite() {
         return 1.0;
     }
-    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
+    let r = b / a;
+    1.0 / (1.0 + r * r)
 }
 
 impl PathTracer {

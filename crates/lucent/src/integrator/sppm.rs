@@ -127,7 +127,9 @@ pub fn render_sppm(
     let mut iterations = 0u32;
     let total = u64::from(settings.spp) * pixels as u64;
     while iterations < settings.spp {
-        if hooks.cancel.load(Ordering::Relaxed) || deadline.is_some_and(|d| Instant::now() >= d) {
+        // The first iteration is whole however short the time limit.
+        let out_of_time = iterations > 0 && deadline.is_some_and(|d| Instant::now() >= d);
+        if hooks.cancel.load(Ordering::Relaxed) || out_of_time {
             break;
         }
         let k = iterations;
@@ -209,8 +211,10 @@ pub fn render_sppm(
             let value = st.direct / k + indirect;
             let finite = value.is_finite();
             stats.nonfinite += u64::from(!finite && iterations > 0);
-            for _ in 0..iterations {
-                film.add_sample(x, y, finite.then_some(value), 1.0);
+            // The estimate as `iterations` samples of weight 1.
+            if iterations > 0 {
+                film.add_sample(x, y, finite.then_some(value), k);
+                film.count_samples(x, y, iterations - 1);
             }
         }
     }
@@ -263,9 +267,17 @@ fn camera_path(
             direct += beta * m.ke;
         }
         let v = Vertex::new(scene, ray.dir, hit);
-        if !v.bsdf.is_delta() {
-            direct += beta * v.direct_light(scene, u_light, false, &mut stats);
-            return (Some(VisiblePoint { vertex: v, beta }), direct, stats);
+        // A visible point gathers the BSDF's non-delta lobes; its Dirac lobes (mirrors, glass,
+        // a smooth coat) are followed. A mixture picks one by the BSDF's own sampling: the
+        // point then stands for its share, 1 − P(delta).
+        let p_delta = v.bsdf.delta_share(v.wo);
+        let stop = |beta: Rgb, v: Vertex, direct: &mut Rgb, stats: &mut RayStats| {
+            *direct += beta * v.direct_light(scene, u_light, false, stats);
+            Some(VisiblePoint { vertex: v, beta })
+        };
+        if p_delta <= 0.0 {
+            let vp = stop(beta, v, &mut direct, &mut stats);
+            return (vp, direct, stats);
         }
         if depth == sppm.max_depth {
             break;
@@ -273,6 +285,10 @@ fn camera_path(
         let Some(b) = v.bounce(u_bsdf, Transport::Radiance, &mut stats) else {
             break;
         };
+        if !b.sample.delta {
+            let vp = stop(beta / (1.0 - p_delta), v, &mut direct, &mut stats);
+            return (vp, direct, stats);
+        }
         beta *= b.sample.weight;
         ray = b.ray;
         from = Some(b.from);
@@ -388,7 +404,11 @@ impl Grid {
                 for y in a[1]..=b[1] {
                     for x in a[0]..=b[0] {
                         let h = grid.bucket([x, y, z]);
-                        grid.buckets[h].push(i as u32);
+                        // Two cells of a point may share a bucket: list it once (points go in
+                        // in order, so a repeat is the bucket's last entry).
+                        if grid.buckets[h].last() != Some(&(i as u32)) {
+                            grid.buckets[h].push(i as u32);
+                        }
                     }
                 }
             }

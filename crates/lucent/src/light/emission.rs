@@ -38,9 +38,12 @@
 //! counts `π · πr² · L` (the flux into one side of a disc); picking is unbiased whatever the
 //! weights, so this only changes how often the environment is picked.
 //!
-//! Photons of area lights start exactly on the light's surface (no offset) and name it in
-//! [`Photon::from_object`], so that the tracer can step off it under the crate's one
-//! self-intersection policy.
+//! Photons of area lights start just off the light's surface, to its front, moved by
+//! [`crate::spawn::offset_origin`] (the crate's one offset: the point's rounding error along
+//! the normal, then a few ulps), and name the light in [`Photon::from_object`]. Photons from
+//! lights at infinity start on the disc of the bounding sphere of the scene's bounded shapes:
+//! infinite planes beyond it get no photons from them (their direct light is next-event
+//! estimation's, unaffected; only light they would bounce onto the scene is missed).
 //!
 //! Random numbers: `u_pick` picks the light and, rescaled, a light's triangle; `u_pos` the
 //! point (on the shape, or on the disc of a light at infinity); `u_dir` the direction.

@@ -68,10 +68,12 @@ impl Emitters {
             entries.push(Entry::Environment);
             power.push(env.power(radius));
         }
-        // Lights of no measurable power still get a share: a scene of them must not go dark.
+        // A power too large for a float still gets the largest share (capped so that the sum
+        // stays finite), a NaN or negative one none; when no light has a measurable power they
+        // share alike, so that a scene of them does not go dark.
         let power: Vec<f32> = power
             .iter()
-            .map(|&p| if p.is_finite() && p > 0.0 { p } else { 0.0 })
+            .map(|&p| if p > 0.0 { p.min(f32::MAX / 1e6) } else { 0.0 })
             .collect();
         let pick =
             Distribution1D::new(&power).or_else(|| Distribution1D::new(&vec![1.0; entries.len()]));

@@ -43,12 +43,30 @@ impl EnvironmentLight {
     /// The environment of a lat-long image, or `None` when it is black everywhere.
     pub fn image(image: &ImageTexture) -> Option<Self> {
         let (w, h) = (image.width() as usize, image.height() as usize);
+        let lum: Vec<f32> = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let uv = Vec2::new((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32);
+                luminance(image.lookup(uv)).max(0.0)
+            })
+            .collect();
+        // Radiance is interpolated between texel centres, so a black texel beside a bright one
+        // still sends light: each cell is weighted by the brightest texel it blends (its 3 × 3
+        // neighbourhood, wrapping sideways), so no direction that shows light has density 0 —
+        // the photon mapper samples the environment with no second technique to make up for it.
         let mut weights = Vec::with_capacity(w * h);
         for y in 0..h {
             let sin_theta = (PI * (y as f32 + 0.5) / h as f32).sin();
             for x in 0..w {
-                let uv = Vec2::new((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32);
-                weights.push(luminance(image.lookup(uv)).max(0.0) * sin_theta);
+                let mut m = 0.0f32;
+                for dy in -1i64..=1 {
+                    let yy = (y as i64 + dy).clamp(0, h as i64 - 1) as usize;
+                    for dx in -1i64..=1 {
+                        let xx = (x as i64 + dx).rem_euclid(w as i64) as usize;
+                        m = m.max(lum[yy * w + xx]);
+                    }
+                }
+                weights.push(m * sin_theta);
             }
         }
         let dist = Distribution2D::new(&weights, w, h)?;
@@ -127,8 +145,9 @@ mod tests {
 
     #[test]
     fn an_image_is_sampled_where_it_is_bright() {
-        // An 8 × 4 black map with one bright texel: every sample lands in it, and the pdf of
-        // the sampled direction agrees with pdf().
+        // An 8 × 4 black map with one bright texel: every sample lands in it or in the cells
+        // its light is blended into (its neighbours), and the pdf of the sampled direction
+        // agrees with pdf().
         let mut texels = vec![Rgb::BLACK; 32];
         texels[8 + 5] = Rgb::gray(10.0);
         let image = ImageTexture::new(8, 4, texels).unwrap();
@@ -137,9 +156,13 @@ mod tests {
             let u = Vec2::new((k % 8) as f32 / 8.0 + 0.06, (k / 8) as f32 / 8.0 + 0.06);
             let (d, pdf) = env.sample(u).unwrap();
             let uv = latlong_uv(d);
-            assert_eq!(((uv.x * 8.0) as u32, (uv.y * 4.0) as u32), (5, 1), "{uv}");
+            let (cx, cy) = ((uv.x * 8.0) as i32, (uv.y * 4.0) as i32);
+            assert!((cx - 5).abs() <= 1 && (cy - 1).abs() <= 1, "{uv}");
             assert!((env.pdf(d) - pdf).abs() <= 1e-3 * pdf);
         }
+        // Where the image is black beyond the blend, nothing is sampled.
+        let far = latlong_direction(Vec2::new(1.5 / 8.0, 3.5 / 4.0)).0;
+        assert_eq!(env.pdf(far), 0.0);
         assert!(
             EnvironmentLight::image(&ImageTexture::new(1, 1, vec![Rgb::BLACK]).unwrap()).is_none()
         );

@@ -304,12 +304,19 @@ impl SceneBuilder {
         for &(mesh, _, _) in &self.instances {
             placements[mesh as usize] += 1;
         }
+        // Within a budget of copied triangles: past it, placements stay instances.
+        let mut budget = MERGE_BUDGET;
         let merge: Vec<bool> = self
             .instances
             .iter()
             .map(|&(mesh, _, _)| {
-                placements[mesh as usize] == 1
-                    || self.meshes[mesh as usize].triangles.len() <= MERGE_TRIANGLES
+                let n = self.meshes[mesh as usize].triangles.len();
+                let wanted = placements[mesh as usize] == 1 || n <= MERGE_TRIANGLES;
+                let fits = n <= budget;
+                if wanted && fits {
+                    budget -= n;
+                }
+                wanted && fits
             })
             .collect();
         let mut kept = vec![false; self.meshes.len()];
@@ -406,6 +413,9 @@ impl SceneBuilder {
 
 /// Meshes of at most this many triangles are merged into world space wherever they are placed.
 const MERGE_TRIANGLES: usize = 64;
+/// The most triangles copied into the merged world-space mesh (about 50 MB with its
+/// accelerator): a scene of millions of small placements keeps the rest as instances.
+const MERGE_BUDGET: usize = 1 << 20;
 
 /// The world-space mesh of the instances marked in `merge` (in instance order), with its
 /// accelerator from `accel`; `None` when none is.
