@@ -559,7 +559,6 @@ fn render_tile_splats(
     let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
     let mut splats = TileSplats::new(tile.x0, tile.y0, w, h, &settings.filter);
     let width = u64::from(scene.camera.width());
-    let path = matches!(settings.integrator, Integrator::Path(_));
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -574,16 +573,7 @@ fn render_tile_splats(
                 }
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
                 // Uniform in the pixel: the filter weighs the sample where it lands.
-                let (u, lens) = if path {
-                    (sampler.next_2d(), sampler.next_2d())
-                } else {
-                    let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
-                    let lens = glam::Vec2::new(
-                        uniform(settings.seed, pixel, s, 2),
-                        uniform(settings.seed, pixel, s, 3),
-                    );
-                    (glam::Vec2::new(dx, dy), lens)
-                };
+                let (u, lens) = pixel_and_lens(settings, pixel, s, &mut sampler);
                 let (sx, sy) = (x as f32 + u.x, y as f32 + u.y);
                 let ray = scene.camera.ray_through_lens(sx, sy, lens);
                 stats.camera += 1;
@@ -600,12 +590,30 @@ fn render_tile_splats(
     (stats, taken, Some(splats))
 }
 
-/// The camera ray of sample `s` of pixel `(x, y)` (index `pixel`), and its film weight.
-///
-/// The path tracer draws the position in the filter and on the lens from its low-discrepancy
-/// sampler. The deterministic integrators keep the stratified jitter of
-/// [`pixel_offset`] (with the default one-pixel box filter, exactly as before filters
-/// existed), mapped through the filter otherwise, and the lens position from the hash.
+/// Where in its pixel sample `s` of pixel `pixel` lands (uniform in `[0, 1)²`) and which point
+/// of the lens it passes: from the low-discrepancy sampler for the path tracer, and for the
+/// deterministic integrators the stratified jitter of [`pixel_offset`] (exactly as before filters
+/// and lenses existed) with the lens position from the hash.
+fn pixel_and_lens(
+    settings: &RenderSettings,
+    pixel: u64,
+    s: u32,
+    sampler: &mut Sampler,
+) -> (glam::Vec2, glam::Vec2) {
+    if let Integrator::Path(_) = settings.integrator {
+        return (sampler.next_2d(), sampler.next_2d());
+    }
+    let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
+    let lens = glam::Vec2::new(
+        uniform(settings.seed, pixel, s, 2),
+        uniform(settings.seed, pixel, s, 3),
+    );
+    (glam::Vec2::new(dx, dy), lens)
+}
+
+/// The camera ray of sample `s` of pixel `(x, y)` (index `pixel`), and its film weight: where
+/// [`pixel_and_lens`] puts it, mapped through the filter by importance sampling unless the
+/// filter is the one-pixel box.
 fn camera_sample(
     scene: &Scene,
     settings: &RenderSettings,
@@ -616,23 +624,11 @@ fn camera_sample(
     sampler: &mut Sampler,
 ) -> (Ray, f32) {
     let (x, y) = (x as f32, y as f32);
-    if let Integrator::Path(_) = settings.integrator {
-        let (offset, weight) = filter.sample(sampler.next_2d());
-        let lens = sampler.next_2d();
-        let ray = scene
-            .camera
-            .ray_through_lens(x + 0.5 + offset.x, y + 0.5 + offset.y, lens);
-        return (ray, weight);
-    }
-    let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
-    let lens = glam::Vec2::new(
-        uniform(settings.seed, pixel, s, 2),
-        uniform(settings.seed, pixel, s, 3),
-    );
+    let (u, lens) = pixel_and_lens(settings, pixel, s, sampler);
     if settings.filter == Filter::default() {
-        return (scene.camera.ray_through_lens(x + dx, y + dy, lens), 1.0);
+        return (scene.camera.ray_through_lens(x + u.x, y + u.y, lens), 1.0);
     }
-    let (offset, weight) = filter.sample(glam::Vec2::new(dx, dy));
+    let (offset, weight) = filter.sample(u);
     let ray = scene
         .camera
         .ray_through_lens(x + 0.5 + offset.x, y + 0.5 + offset.y, lens);

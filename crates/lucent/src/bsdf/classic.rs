@@ -193,13 +193,7 @@ impl Classic {
         if !self.reflects(wo, wi) {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample {
-            wi,
-            weight: self.eval(wo, wi) * (1.0 / pdf),
-            pdf,
-            delta: false,
-        })
+        BsdfSample::of_mixture(wi, self.eval(wo, wi), self.pdf(wo, wi))
     }
 }
 

@@ -100,6 +100,20 @@ pub struct BsdfSample {
     pub delta: bool,
 }
 
+impl BsdfSample {
+    /// The sample of a non-delta direction `wi` drawn from a mixture of lobes that can each
+    /// produce it: weighted by the mixture's whole value `f·|cos θi|` over its whole density
+    /// (one-sample MIS); `None` where the density vanishes.
+    pub(crate) fn of_mixture(wi: Vec3, value: Rgb, pdf: f32) -> Option<Self> {
+        (pdf > 0.0).then(|| Self {
+            wi,
+            weight: value * (1.0 / pdf),
+            pdf,
+            delta: false,
+        })
+    }
+}
+
 /// A surface's scattering function: one of a closed set of models, each in its own file.
 ///
 /// Colours are per-channel coefficients in `[0, 1]` unless said otherwise; indices of

@@ -189,13 +189,7 @@ impl Plastic {
             return None;
         }
         // Both lobes can produce every direction: weight by the mixture (one-sample MIS).
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample {
-            wi,
-            weight: self.eval(wo, wi) * (1.0 / pdf),
-            pdf,
-            delta: false,
-        })
+        BsdfSample::of_mixture(wi, self.eval(wo, wi), self.pdf(wo, wi))
     }
 }
 
