@@ -53,21 +53,11 @@ fn a_time_limit_ends_the_render_with_its_image() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("box.pfm");
     let started = std::time::Instant::now();
-    let output = lucent()
-        .arg("render")
-        .arg(workspace().join("examples/cornell-box.xml"))
-        .args([
-            "--width",
-            "32",
-            "--height",
-            "32",
-            "--time-limit",
-            "0.5",
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let output = render_to(
+        &workspace().join("examples/cornell-box.xml"),
+        &["--width", "32", "--height", "32", "--time-limit", "0.5"],
+        &out,
+    );
     assert_success(&output);
     // Without --spp the samples are unbounded: only the limit can have ended it. (A loose
     // bound: this checks that the limit stops the render, not how fast lucent is.)
@@ -87,21 +77,18 @@ fn a_time_limit_ends_the_render_with_its_image() {
     assert!(!dir.path().join("box.pfm.checkpoint").exists());
 
     // However short the limit, the first pass is whole: no pixel is left black.
-    let output = lucent()
-        .arg("render")
-        .arg(workspace().join("examples/cornell-box.xml"))
-        .args([
+    let output = render_to(
+        &workspace().join("examples/cornell-box.xml"),
+        &[
             "--width",
             "16",
             "--height",
             "16",
             "--time-limit",
             "0.000001",
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+        ],
+        &out,
+    );
     assert_success(&output);
     let image = read_pfm(&out);
     let dark = image
@@ -112,10 +99,9 @@ fn a_time_limit_ends_the_render_with_its_image() {
     assert!(dark < 4, "{dark} black pixels after the shortest limit");
 
     // With --spp as well, whichever comes first ends it: here the samples.
-    let output = lucent()
-        .arg("render")
-        .arg(workspace().join("examples/cornell-box.xml"))
-        .args([
+    let output = render_to(
+        &workspace().join("examples/cornell-box.xml"),
+        &[
             "--width",
             "16",
             "--height",
@@ -124,11 +110,9 @@ fn a_time_limit_ends_the_render_with_its_image() {
             "2",
             "--time-limit",
             "60",
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+        ],
+        &out,
+    );
     assert_success(&output);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains(" 2 spp"), "{stdout}");

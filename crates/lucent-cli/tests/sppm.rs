@@ -12,13 +12,11 @@ fn the_caustic_examples_render_with_their_caustic() {
     let dir = tempfile::tempdir().unwrap();
     for scene in ["examples/caustic.toml", "examples/cornell-glass.toml"] {
         let out = dir.path().join("out.pfm");
-        let output = lucent()
-            .arg("render")
-            .arg(workspace().join(scene))
-            .args(["--width", "32", "--height", "24", "--spp", "4", "-o"])
-            .arg(&out)
-            .output()
-            .unwrap();
+        let output = render_to(
+            &workspace().join(scene),
+            &["--width", "32", "--height", "24", "--spp", "4"],
+            &out,
+        );
         assert_success(&output);
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert!(!stderr.contains("warning"), "{scene}: {stderr}");
@@ -34,21 +32,11 @@ fn the_caustic_examples_render_with_their_caustic() {
 fn a_time_limit_ends_the_photon_mapper_between_iterations() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("c.pfm");
-    let output = lucent()
-        .arg("render")
-        .arg(workspace().join("examples/caustic.toml"))
-        .args([
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "--time-limit",
-            "0.5",
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let output = render_to(
+        &workspace().join("examples/caustic.toml"),
+        &["--width", "32", "--height", "24", "--time-limit", "0.5"],
+        &out,
+    );
     assert_success(&output);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("spp in the time limit"), "{stdout}");

@@ -96,20 +96,12 @@ fn worst(film: &Film, expected: f32) -> f32 {
 #[test]
 fn a_white_diffuse_sphere_vanishes_in_the_white_furnace() {
     // A convex object sees only the environment: every bounce returns ρ·1.
-    let white = Material {
-        kd: Rgb::WHITE.into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    };
+    let white = Material::lambertian(Rgb::WHITE);
     let film = film_of(&furnace(white, 10), 16384, 0, 10);
     let w = worst(&film, 1.0);
     assert!(w < 0.005, "worst pixel {w} from 1");
 
-    let grey = Material {
-        kd: Rgb::gray(0.5).into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    };
+    let grey = Material::lambertian(Rgb::gray(0.5));
     let film = film_of(&furnace(grey, 16), 1024, 0, 10);
     // The sphere's pixels are 0.5, the background's 1.
     let centre = film.pixel(8, 8);
@@ -197,11 +189,7 @@ fn a_rectangular_light_gives_lamberts_irradiance() {
     // A camera looking straight down at the origin through a narrow field.
     let camera = Camera::new(Vec3::new(0.0, 0.5, 0.0), Vec3::ZERO, Vec3::Z, 0.5, 5, 5).unwrap();
     let mut b = SceneBuilder::new(camera);
-    let floor = b.material(Material {
-        kd: Rgb::gray(rho).into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    });
+    let floor = b.material(Material::lambertian(Rgb::gray(rho)));
     let light = b.material(Material {
         ke: Rgb::gray(radiance),
         surface: Surface::Diffuse,
@@ -243,11 +231,7 @@ fn a_rectangular_light_gives_lamberts_irradiance() {
 
 #[test]
 fn the_same_seed_gives_the_same_image_on_any_number_of_threads() {
-    let grey = Material {
-        kd: Rgb::gray(0.5).into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    };
+    let grey = Material::lambertian(Rgb::gray(0.5));
     let scene = furnace(grey, 20);
     let one = film_of(&scene, 8, 1, 10);
     let two = film_of(&scene, 8, 2, 10);
@@ -261,11 +245,7 @@ fn a_splatted_gaussian_is_as_bright_less_noisy_and_the_same_on_any_threads() {
     let camera = Camera::new(Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::Z, 40.0, 24, 24).unwrap();
     let mut b = SceneBuilder::new(camera);
     b.background(Rgb::WHITE);
-    let floor = b.material(Material {
-        kd: Rgb::gray(0.5).into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    });
+    let floor = b.material(Material::lambertian(Rgb::gray(0.5)));
     b.plane(lucent::shape::Plane::new(Vec3::ZERO, Vec3::Y), floor);
     let scene = b.build().unwrap();
     let gaussian = Filter::Gaussian {
@@ -302,11 +282,7 @@ fn a_splatted_gaussian_is_as_bright_less_noisy_and_the_same_on_any_threads() {
 
 #[test]
 fn a_splatting_render_stopped_and_resumed_is_the_uninterrupted_one() {
-    let grey = Material {
-        kd: Rgb::gray(0.5).into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    };
+    let grey = Material::lambertian(Rgb::gray(0.5));
     let scene = furnace(grey, 40);
     let settings = RenderSettings {
         integrator: Integrator::Path(PathTracer::default()),

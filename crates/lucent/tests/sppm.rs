@@ -27,14 +27,6 @@ fn film_of(scene: &Scene, integrator: Integrator, spp: u32, threads: usize) -> F
     common::render_all(scene, &settings).film
 }
 
-fn diffuse(albedo: f32) -> Material {
-    Material {
-        kd: Rgb::gray(albedo).into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    }
-}
-
 fn glass() -> Material {
     Material {
         surface: Surface::Dielectric {
@@ -60,7 +52,7 @@ fn the_caustic_of_a_glass_ball_carries_the_light_that_passes_through_it() {
     // A camera between the ball and the floor, looking down on the caustic.
     let camera = Camera::new(Vec3::new(0.0, 1.5, 0.0), Vec3::ZERO, Vec3::Z, 80.0, 48, 48).unwrap();
     let mut b = SceneBuilder::new(camera);
-    let floor = b.material(diffuse(rho));
+    let floor = b.material(Material::lambertian(Rgb::gray(rho)));
     let ball = b.material(glass());
     b.plane(Plane::new(Vec3::ZERO, Vec3::Y), floor);
     b.sphere(
@@ -148,12 +140,8 @@ fn room(size: u32) -> Scene {
     )
     .unwrap();
     let mut b = SceneBuilder::new(camera);
-    let white = b.material(diffuse(0.75));
-    let red = b.material(Material {
-        kd: Rgb::new(0.7, 0.1, 0.1).into(),
-        surface: Surface::Diffuse,
-        ..Material::default()
-    });
+    let white = b.material(Material::lambertian(Rgb::gray(0.75)));
+    let red = b.material(Material::lambertian(Rgb::new(0.7, 0.1, 0.1)));
     let lamp = b.material(Material {
         ke: Rgb::gray(10.0),
         surface: Surface::Diffuse,

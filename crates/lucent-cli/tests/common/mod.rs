@@ -72,6 +72,18 @@ pub fn read_pfm(path: &Path) -> Image {
     }
 }
 
+/// Runs `lucent render SCENE ARGS… -o OUT` to the end.
+pub fn render_to(scene: &Path, args: &[&str], out: &Path) -> Output {
+    lucent()
+        .arg("render")
+        .arg(scene)
+        .args(args)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 /// Writes `scene` into a fresh folder, renders it to PFM with `args`, and reads the image.
 pub fn render_scene(scene: &str, args: &[&str]) -> Image {
     let dir = tempfile::tempdir().unwrap();

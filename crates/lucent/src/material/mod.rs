@@ -108,6 +108,15 @@ impl Material {
         }
     }
 
+    /// A physically based Lambertian material of albedo `albedo` (its classic `kd` too).
+    pub fn lambertian(albedo: Rgb) -> Self {
+        Self {
+            kd: Texture::Solid(albedo),
+            surface: Surface::Diffuse,
+            ..Self::default()
+        }
+    }
+
     /// The BSDF at a surface point whose diffuse colour (`kd` evaluated there) is `kd`.
     pub fn bsdf(&self, kd: Rgb) -> Bsdf {
         match self.surface {
