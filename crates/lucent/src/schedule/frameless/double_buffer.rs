@@ -62,13 +62,13 @@ impl DoubleBuffer {
     /// Writes samples of the frame in flight into the back buffer; the last one swaps.
     pub fn accept(&mut self, samples: &[Sample]) {
         let Some(instant) = self.frame else { return };
+        // Every request handed out belongs to the frame in flight (the next one starts only
+        // after the swap), whatever instant the driver resolved it to.
         for s in samples {
-            let p = s.pixel as usize;
-            if s.time != instant || p >= self.back.len() {
-                continue; // not of this frame
+            if let Some(slot) = self.back.get_mut(s.pixel as usize) {
+                *slot = s.color;
+                self.done += 1;
             }
-            self.back[p] = s.color;
-            self.done += 1;
         }
         if self.done >= self.width * self.height {
             std::mem::swap(&mut self.front, &mut self.back);
