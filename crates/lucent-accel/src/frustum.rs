@@ -79,8 +79,12 @@ impl Frustum {
         }
         self.normals.iter().all(|n| {
             let p = Vec3::select(n.cmpge(Vec3::ZERO), b.max, b.min) - self.origin;
-            // NaN (a NaN bound, or ∞ − ∞) compares false: the box is kept.
-            !(n.dot(p) < -ANGULAR_SLACK * (p.x.abs() + p.y.abs() + p.z.abs()))
+            // Outside only when surely below the plane; NaN (a NaN bound, or ∞ − ∞) is
+            // unordered, and the box is kept.
+            let outside = n
+                .dot(p)
+                .partial_cmp(&(-ANGULAR_SLACK * (p.x.abs() + p.y.abs() + p.z.abs())));
+            outside != Some(std::cmp::Ordering::Less)
         })
     }
 
@@ -93,7 +97,13 @@ impl Frustum {
             return true;
         }
         let n = normal.normalize_or_zero() * side.signum();
-        self.corners.iter().any(|d| !(n.dot(*d) <= -ANGULAR_SLACK))
+        // A corner heading surely away (`n · d ≤ −slack`) is no witness; NaN keeps the plane.
+        self.corners.iter().any(|d| {
+            !matches!(
+                n.dot(*d).partial_cmp(&-ANGULAR_SLACK),
+                Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+            )
+        })
     }
 }
 
@@ -119,9 +129,15 @@ mod tests {
     fn boxes_in_front_are_touched_and_those_beside_or_behind_are_not() {
         let f = beam();
         assert!(f.touches(&cube(Vec3::new(0.0, 0.0, -5.0), 0.1)));
-        assert!(f.touches(&cube(Vec3::new(0.55, 0.0, -5.0), 0.1)), "straddles a side");
+        assert!(
+            f.touches(&cube(Vec3::new(0.55, 0.0, -5.0), 0.1)),
+            "straddles a side"
+        );
         assert!(!f.touches(&cube(Vec3::new(1.0, 0.0, -5.0), 0.1)));
-        assert!(!f.touches(&cube(Vec3::new(0.0, 0.0, 5.0), 0.1)), "behind the origin");
+        assert!(
+            !f.touches(&cube(Vec3::new(0.0, 0.0, 5.0), 0.1)),
+            "behind the origin"
+        );
         assert!(f.touches(&cube(Vec3::ZERO, 0.1)), "holds the origin");
         assert!(!f.touches(&Aabb::EMPTY));
     }
@@ -158,7 +174,10 @@ mod tests {
         assert!(!f.may_reach_plane(Vec3::new(0.0, 0.0, 3.0), Vec3::Z));
         // A floor below: the beam looks level, its lower rays go down.
         assert!(f.may_reach_plane(Vec3::new(0.0, -1.0, 0.0), Vec3::Y));
-        assert!(f.may_reach_plane(Vec3::new(0.0, 1.0, 0.0), -Vec3::Y), "upper rays rise");
+        assert!(
+            f.may_reach_plane(Vec3::new(0.0, 1.0, 0.0), -Vec3::Y),
+            "upper rays rise"
+        );
         // A ceiling far above a beam that looks down: missed.
         let down = Frustum::new(
             Vec3::ZERO,

@@ -114,12 +114,7 @@ fn a_beam_beside_the_scene_misses_it_and_a_narrow_one_skips_levels() {
         let c = |x: f32, y: f32| Vec3::new(x, y, 1.0);
         Frustum::new(
             eye,
-            [
-                c(dx, dy),
-                c(dx + w, dy),
-                c(dx + w, dy + w),
-                c(dx, dy + w),
-            ],
+            [c(dx, dy), c(dx + w, dy), c(dx + w, dy + w), c(dx, dy + w)],
         )
         .unwrap()
     };

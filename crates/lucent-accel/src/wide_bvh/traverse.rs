@@ -1,10 +1,10 @@
 //! Traversal of the wide BVH: eight child boxes per SIMD test, nearest child first.
 
+use super::Cut;
 use super::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
 use super::simd::Avx;
 use super::simd::{self, Simd, Sse};
-use super::Cut;
 use super::{EMPTY, NodeW, VIRTUAL, WIDTH, WideBvh};
 use crate::aabb::{CULL_SLACK, ROUNDING_SLACK};
 use crate::{Accelerator, Ray, TraversalStats};

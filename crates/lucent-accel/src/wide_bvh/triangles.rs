@@ -233,7 +233,8 @@ impl WideTriangleBvh {
             skip,
             best: None,
         };
-        self.bvh.closest_walk(s, ray, t_max, stats, &mut leaves, entry);
+        self.bvh
+            .closest_walk(s, ray, t_max, stats, &mut leaves, entry);
         leaves.best
     }
 

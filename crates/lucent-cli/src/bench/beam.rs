@@ -31,8 +31,14 @@ pub struct BeamRow {
 }
 
 /// The camera rays of `scene` in tiles of `tile`, per pixel and as beams, on `threads`.
-pub fn measure(scene: &Scene, tile: u32, threads: usize) -> anyhow::Result<(Measurement, Measurement)> {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+pub fn measure(
+    scene: &Scene,
+    tile: u32,
+    threads: usize,
+) -> anyhow::Result<(Measurement, Measurement)> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
     let (w, h) = (scene.camera.width(), scene.camera.height());
     let tiles: Vec<(u32, u32)> = (0..h.div_ceil(tile))
         .flat_map(|ty| (0..w.div_ceil(tile)).map(move |tx| (tx * tile, ty * tile)))
@@ -46,7 +52,9 @@ pub fn measure(scene: &Scene, tile: u32, threads: usize) -> anyhow::Result<(Meas
                     let (x1, y1) = ((x0 + tile).min(w), (y0 + tile).min(h));
                     let beam = beams
                         .then(|| {
-                            let f = scene.camera.frustum((x0 as f32, y0 as f32), (x1 as f32, y1 as f32));
+                            let f = scene
+                                .camera
+                                .frustum((x0 as f32, y0 as f32), (x1 as f32, y1 as f32));
                             f.map(|f| scene.beam(&f))
                         })
                         .flatten();

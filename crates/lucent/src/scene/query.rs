@@ -1,12 +1,12 @@
 //! Ray queries: the nearest surface, and what blocks a shadow ray.
 
+use super::Beam;
 use super::{MeshAccel, Scene};
 use crate::Rgb;
 use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, gamma, triangle};
 use crate::spawn::Leaving;
 use crate::texture::image::latlong_uv;
 use glam::{Vec2, Vec3};
-use super::Beam;
 use lucent_accel::wide_bvh::PackedHit;
 use lucent_accel::{Accelerator, Cut, Ray, TraversalStats, WideTriangleBvh};
 
@@ -303,12 +303,14 @@ impl Scene {
                     _ => false,
                 }
             }),
-            MeshAccel::Packed(packed) => match closest_packed(packed, *cut, &local, t_max, skip, stats) {
-                Some((tri, hit, v)) => {
-                    nearest.offer(hit.t, key(tri), Candidate::Triangle(k, tri, hit, v, false))
+            MeshAccel::Packed(packed) => {
+                match closest_packed(packed, *cut, &local, t_max, skip, stats) {
+                    Some((tri, hit, v)) => {
+                        nearest.offer(hit.t, key(tri), Candidate::Triangle(k, tri, hit, v, false))
+                    }
+                    None => false,
                 }
-                None => false,
-            },
+            }
             MeshAccel::Unused => false,
         }
     }
@@ -348,10 +350,12 @@ impl Scene {
                     _ => false,
                 }
             }),
-            MeshAccel::Packed(packed) => match closest_packed(packed, *cut, ray, t_max, skip, stats) {
-                Some((i, hit, v)) => offer(i, hit, v),
-                None => false,
-            },
+            MeshAccel::Packed(packed) => {
+                match closest_packed(packed, *cut, ray, t_max, skip, stats) {
+                    Some((i, hit, v)) => offer(i, hit, v),
+                    None => false,
+                }
+            }
             MeshAccel::Unused => false,
         }
     }
