@@ -152,22 +152,21 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let t_max = nearest.t;
-        let leaf = |p: u32, t_max: &mut f32| {
-            let found = match self.primitives[p as usize] {
+        let mut leaf = |primitive: Primitive, t_max: &mut f32, nearest: &mut Nearest| {
+            let found = match primitive {
                 Primitive::Sphere(i) => {
                     let sphere = &self.spheres[i as usize].0;
                     match sphere_hit(sphere, ray, inclusive(*t_max), leaving_sphere(from, i)) {
-                        Some(t) => nearest.offer(t, (p, 0), Candidate::Sphere(i, t)),
+                        Some(t) => nearest.offer(t, (i, 0), Candidate::Sphere(i, t)),
                         None => false,
                     }
                 }
                 Primitive::Instance(k) => {
                     let skip = leaving_triangle(from, k);
-                    self.nearest_in_instance(k, ray, *t_max, skip, &mut nearest, &mut mesh_stats)
+                    self.nearest_in_instance(k, ray, *t_max, skip, nearest, &mut mesh_stats)
                 }
                 Primitive::Merged => {
-                    self.nearest_in_merged(ray, *t_max, from, &mut nearest, &mut mesh_stats)
+                    self.nearest_in_merged(ray, *t_max, from, nearest, &mut mesh_stats)
                 }
             };
             if found {
@@ -176,17 +175,29 @@ impl Scene {
             found
         };
         // One top-level primitive (a scene merged into one mesh) needs no top level.
-        if let [_] = self.primitives.as_slice() {
-            let mut leaf = leaf;
-            leaf(0, &mut { t_max });
+        let prims = self.primitives.as_slice();
+        if let [only] = prims {
+            leaf(*only, &mut { nearest.t }, &mut nearest);
         } else {
-            self.accel.closest_hit(ray, t_max, stats, leaf);
+            let t_max = nearest.t;
+            self.accel.closest_hit(ray, t_max, stats, |p, tm| {
+                leaf(prims[p as usize], tm, &mut nearest)
+            });
+        }
+        // The moving objects, beyond what stands still; the tie rule does not depend on which
+        // level a primitive is in.
+        if let Some(m) = &self.moving {
+            let t_max = nearest.t;
+            m.accel.closest_hit(ray, t_max, stats, |p, tm| {
+                leaf(m.primitives[p as usize], tm, &mut nearest)
+            });
         }
         *stats += mesh_stats;
         nearest.candidate.map(|c| self.surface(ray, c))
     }
 
-    /// The tie key of triangle `tri` of instance `k`: instances after the spheres, in order.
+    /// The tie key of triangle `tri` of instance `k`: instances after the spheres (whose key
+    /// is `(sphere, 0)`), in order.
     #[inline]
     fn triangle_key(&self, k: u32, tri: u32) -> (u32, u32) {
         (self.spheres.len() as u32 + k, tri)
@@ -420,7 +431,7 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let leaf = |p: u32| match self.primitives[p as usize] {
+        let mut leaf = |primitive: Primitive| match primitive {
             Primitive::Sphere(i) => {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let crossings = match leaving_sphere(from, i) {
@@ -453,12 +464,18 @@ impl Scene {
                 )
             }
         };
-        let blocked = if let [_] = self.primitives.as_slice() {
-            let mut leaf = leaf;
-            leaf(0)
+        let prims = self.primitives.as_slice();
+        let mut blocked = if let [only] = prims {
+            leaf(*only)
         } else {
-            self.accel.any_hit(ray, t_max, stats, leaf)
+            self.accel
+                .any_hit(ray, t_max, stats, |p| leaf(prims[p as usize]))
         };
+        if !blocked && let Some(m) = &self.moving {
+            blocked = m
+                .accel
+                .any_hit(ray, t_max, stats, |p| leaf(m.primitives[p as usize]));
+        }
         *stats += mesh_stats;
         blocked
     }
