@@ -257,7 +257,8 @@ impl Motion {
                     scale: k.scale,
                 });
             }
-            if i > 0 && !(k.time > keys[i - 1].time) {
+            // Both times are finite (checked above), so `<=` also catches no order.
+            if i > 0 && k.time <= keys[i - 1].time {
                 return Err(MotionError::KeyOrder {
                     part,
                     time: k.time,
