@@ -154,6 +154,18 @@ pub struct Overrides {
     /// unbounded, with it whichever comes first ends the render.
     #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
     pub time_limit: Option<f64>,
+    /// The instant of a moving scene to render, in seconds (default 0). The image is that
+    /// instant alone: there is no shutter, so nothing is motion-blurred.
+    #[arg(long, value_name = "SECONDS", value_parser = instant)]
+    pub time: Option<f64>,
+}
+
+/// A finite number of seconds, negative allowed (motions run both ways in time).
+fn instant(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("expected a number of seconds, got `{s}`")),
+    }
 }
 
 /// A switch on the command line.

@@ -45,6 +45,22 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         println!("lights:      {} (and {})", c.lights, extra.join(" and "));
     }
     println!("materials:   {}", c.materials);
+    if scene.is_animated() {
+        let n = scene.moving_objects();
+        let objects = match n {
+            1 => "1 object moves".to_string(),
+            n => format!("{n} objects move"),
+        };
+        let camera = if scene.camera_moves() {
+            "the camera moves"
+        } else {
+            "the camera stands still"
+        };
+        let t = job.overrides.time.unwrap_or(0.0);
+        println!(
+            "motion:      {objects}, {camera} (shown at t = {t} s; `--time` picks another instant)"
+        );
+    }
     let b = scene.bounds();
     let infinite = if c.planes > 0 {
         format!(" (plus {} infinite planes)", c.planes)

@@ -36,7 +36,16 @@ impl Job {
             None => SceneFile::default_scene(),
         };
         apply(&mut file, overrides)?;
-        let loaded = file.build()?;
+        let mut loaded = file.build()?;
+        if let Some(t) = overrides.time {
+            if loaded.scene.is_animated() {
+                loaded.scene = loaded.scene.at_time(t);
+            } else {
+                loaded
+                    .warnings
+                    .push("--time has no effect: nothing in the scene moves".to_string());
+            }
+        }
         for w in &loaded.warnings {
             eprintln!("warning: {w}");
         }
@@ -56,7 +65,7 @@ impl Job {
         let s = &self.loaded.settings;
         let c = &self.loaded.scene.camera;
         let settings = format!(
-            "lucent {} {}x{} spp={} seed={} tile={} {:?} {:?} {} {:?} {:?}",
+            "lucent {} {}x{} spp={} seed={} tile={} {:?} {:?} {} {:?} {:?} t={}",
             env!("CARGO_PKG_VERSION"),
             c.width(),
             c.height(),
@@ -68,6 +77,7 @@ impl Job {
             self.loaded.scene.triangle_test().name(),
             (s.filter, s.filter_sampling),
             c.lens(),
+            self.overrides.time.unwrap_or(0.0).to_bits(),
         );
         let mut f = Fingerprint::default();
         f.add(&self.loaded.inputs.to_le_bytes());
@@ -290,6 +300,7 @@ impl Overrides {
             "time_limit",
             self.time_limit.map(|v| v.to_bits().to_string()),
         );
+        put("time", self.time.map(|v| v.to_bits().to_string()));
         put(
             "filter_sampling",
             self.filter_sampling
@@ -353,6 +364,7 @@ impl Overrides {
                     )
                 }
                 "time_limit" => o.time_limit = Some(f64::from_bits(v.parse().map_err(|_| bad())?)),
+                "time" => o.time = Some(f64::from_bits(v.parse().map_err(|_| bad())?)),
                 _ => bail!("an unknown setting `{k}`"),
             }
         }
@@ -384,6 +396,7 @@ mod tests {
             filter: Some(FilterArg::Mitchell),
             filter_sampling: Some(FilterSamplingArg::Importance),
             time_limit: Some(2.5),
+            time: Some(-1.25),
         };
         assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
         assert_eq!(Overrides::from_pairs("").unwrap(), Overrides::default());

@@ -192,3 +192,42 @@ fn ctrl_c_writes_the_partial_image() {
         "a checkpoint beside it"
     );
 }
+
+#[test]
+fn time_renders_an_instant_of_a_moving_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = workspace().join("examples/moving.toml");
+    let render = |time: &str, name: &str| {
+        let out = dir.path().join(name);
+        let output = lucent()
+            .args([
+                "render", "--width", "64", "--height", "48", "--time", time, "-o",
+            ])
+            .arg(&out)
+            .arg(&scene)
+            .output()
+            .unwrap();
+        assert_success(&output);
+        read_pfm(&out).pixels
+    };
+    let zero = render("0", "a.pfm");
+    assert_eq!(
+        zero,
+        render("0.0", "b.pfm"),
+        "the same instant, the same image"
+    );
+    assert_ne!(zero, render("1.5", "c.pfm"), "the scene moves");
+
+    let output = lucent().arg("info").arg(&scene).output().unwrap();
+    assert_success(&output);
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert!(
+        stdout.contains("motion:      4 objects move, the camera moves"),
+        "{stdout}"
+    );
+    let bad = lucent()
+        .args(["render", "--time", "soon"])
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+}

@@ -802,6 +802,7 @@ fn perspective(p: &gltf::camera::Perspective, world: Mat4) -> Result<CameraDesc,
         fov: Finite(fov),
         aperture: None,
         focus_distance: None,
+        motion: None,
     })
 }
 

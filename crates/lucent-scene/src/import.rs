@@ -41,6 +41,7 @@ pub fn placeholder_camera() -> Spanned<CameraDesc> {
             fov: Finite(45.0),
             aperture: None,
             focus_distance: None,
+            motion: None,
         },
     )
 }
@@ -64,6 +65,7 @@ pub fn framing_camera(bounds: Aabb, width: u32, height: u32) -> CameraDesc {
         fov: Finite(FRAMING_FOV),
         aperture: None,
         focus_distance: None,
+        motion: None,
     }
 }
 

@@ -33,6 +33,11 @@ use std::path::{Path, PathBuf};
 /// The built-in default scene: Whitted's 1980 picture (also `examples/whitted.toml`).
 pub const DEFAULT_SCENE: &str = include_str!("../../../examples/whitted.toml");
 
+/// The built-in moving scene, for frameless displays and their study: balls sliding,
+/// orbiting and bobbing over a checkerboard, a turning box, a slowly circling camera (also
+/// `examples/moving.toml`; a test holds the two alike).
+pub const MOVING_SCENE: &str = include_str!("moving_scene.toml");
+
 /// A scene file read and parsed, not yet built (so its settings can still be overridden):
 /// lucent's TOML, or a file of another format imported into the same description.
 #[derive(Clone, Debug)]
@@ -134,6 +139,17 @@ impl SceneFile {
             DEFAULT_SCENE.to_string(),
         )
         .expect("the built-in default scene parses (checked by a test)")
+    }
+
+    /// The built-in moving scene ([`MOVING_SCENE`]); relative paths in it start from the
+    /// working directory.
+    pub fn moving_scene() -> Self {
+        Self::parse(
+            PathBuf::from("<built-in moving scene>"),
+            PathBuf::new(),
+            MOVING_SCENE.to_string(),
+        )
+        .expect("the built-in moving scene parses (checked by a test)")
     }
 
     /// Parses `text` as a TOML scene file named `path`.

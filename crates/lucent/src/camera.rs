@@ -179,6 +179,53 @@ impl Camera {
     }
 }
 
+/// What a viewer needs to build a camera of its own, and the camera under a motion.
+impl Camera {
+    /// The unit view direction.
+    pub fn forward(&self) -> Vec3 {
+        self.forward
+    }
+
+    /// The image's unit up direction (perpendicular to the view direction).
+    pub fn up_dir(&self) -> Vec3 {
+        self.up.normalize()
+    }
+
+    /// The vertical field of view, in degrees.
+    pub fn fov_degrees(&self) -> f32 {
+        2.0 * self.up.length().atan().to_degrees()
+    }
+
+    /// Image width and height in pixels.
+    pub fn resolution(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// This camera carried by the world-space transform `m` (a motion at one instant): the eye
+    /// as a point, the view frame by the linear part, each frame vector kept at its length
+    /// (so a scale in `m` changes neither the field of view nor the aspect). The lens and
+    /// the resolution stay.
+    pub fn moved(&self, m: glam::Affine3A) -> Camera {
+        let carry = |v: Vec3| {
+            let w = m.transform_vector3(v);
+            w.try_normalize().map_or(v, |u| u * v.length())
+        };
+        let eye = m.transform_point3(self.eye);
+        let eye = if eye.is_finite() { eye } else { self.eye };
+        if m.matrix3 == glam::Mat3A::IDENTITY {
+            // A pure translation keeps the frame bit for bit.
+            return Camera { eye, ..*self };
+        }
+        Camera {
+            eye,
+            forward: carry(self.forward),
+            right: carry(self.right),
+            up: carry(self.up),
+            ..*self
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -238,5 +285,44 @@ mod tests {
             Camera::new(e, Vec3::Z, Vec3::Y, 60.0, 0, 1),
             Err(CameraError::Resolution(0, 1))
         );
+    }
+
+    #[test]
+    fn getters_give_back_the_construction() {
+        let c = Camera::new(
+            Vec3::new(1.0, 2.0, 3.0),
+            Vec3::new(1.0, 2.0, 0.0),
+            Vec3::Y,
+            50.0,
+            32,
+            16,
+        )
+        .unwrap();
+        assert_eq!(c.eye(), Vec3::new(1.0, 2.0, 3.0));
+        assert!((c.forward() - -Vec3::Z).length() < 1e-6);
+        assert!((c.up_dir() - Vec3::Y).length() < 1e-6);
+        assert!((c.fov_degrees() - 50.0).abs() < 1e-4);
+        assert_eq!(c.resolution(), (32, 16));
+    }
+
+    #[test]
+    fn a_moved_camera_turns_its_pinhole_rays() {
+        // A quarter turn about +y, scaled by 2: the eye at +z goes to +2x, the view along −z
+        // turns to −x, and the field of view stays.
+        let c = camera(4, 2);
+        let m = glam::Affine3A::from_scale_rotation_translation(
+            Vec3::splat(2.0),
+            glam::Quat::from_rotation_y(std::f32::consts::FRAC_PI_2),
+            Vec3::ZERO,
+        );
+        let moved = c.moved(m);
+        let ray = moved.ray(2.0, 1.0);
+        assert!((ray.origin - Vec3::new(10.0, 0.0, 0.0)).length() < 1e-5);
+        assert!((ray.dir - -Vec3::X).length() < 1e-6);
+        let corner = moved.ray(4.0, 0.0).dir;
+        let expected = m.transform_vector3(c.ray(4.0, 0.0).dir).normalize();
+        assert!((corner - expected).length() < 1e-6);
+        assert_eq!(moved.lens(), c.lens());
+        assert_eq!(c.moved(glam::Affine3A::IDENTITY), c);
     }
 }

@@ -21,6 +21,7 @@ pub mod film;
 pub mod integrator;
 pub mod light;
 pub mod material;
+pub mod motion;
 pub mod optics;
 pub mod render;
 pub mod sampling;

@@ -4,6 +4,7 @@
 
 mod lights;
 pub mod materials;
+mod motion;
 mod objects;
 pub mod shapes;
 
@@ -172,6 +173,9 @@ pub fn build_with_files(
         ));
     }
     let mut builder = SceneBuilder::new(camera);
+    if let Some(m) = &cam.motion {
+        builder.camera_motion(motion::motion(source, m)?);
+    }
     builder
         .background(desc.world.background.0)
         .ambient(desc.world.ambient.0);

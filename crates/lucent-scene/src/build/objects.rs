@@ -47,9 +47,10 @@ pub fn add_object(
         ("translate", span(&d.translate)),
         ("rotate", span(&d.rotate)),
         ("scale", span(&d.scale)),
+        ("motion", span(&d.motion)),
     ];
     const PLACED: [&str; 5] = ["flip_normals", "transform", "translate", "rotate", "scale"];
-    let takes: Vec<&str> = match d.kind {
+    let mut takes: Vec<&str> = match d.kind {
         ObjectKind::Sphere => vec!["center", "radius"],
         ObjectKind::Plane => vec!["point", "normal"],
         ObjectKind::Triangle => vec!["vertices"],
@@ -59,6 +60,13 @@ pub fn add_object(
             .collect(),
         ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => PLACED.to_vec(),
     };
+    if let (ObjectKind::Plane, Some(m)) = (d.kind, &d.motion) {
+        return Err(ctx.source.error(
+            m.span(),
+            "an infinite plane cannot move (move a large rectangle instead)",
+        ));
+    }
+    takes.push("motion");
     let others: Vec<_> = keys
         .into_iter()
         .filter(|(k, _)| !takes.contains(k))
@@ -66,6 +74,7 @@ pub fn add_object(
     refuse_keys(ctx.source, kind, &others)?;
     let table = o.span();
     let source = ctx.source;
+    let motion = moving(ctx, d, emissive)?;
     match d.kind {
         ObjectKind::Sphere => {
             let center = required(source, table.clone(), kind, "center", &d.center)?
@@ -87,7 +96,10 @@ pub fn add_object(
                 in_range,
                 &format!("a sphere's radius must be between {lo:e} and {hi:e}, got {r:e}"),
             )?;
-            ctx.builder.sphere(Sphere { center, radius: r }, material);
+            let id = ctx.builder.sphere(Sphere { center, radius: r }, material);
+            if let Some(m) = motion {
+                ctx.builder.motion(id, m);
+            }
             let area = 4.0 * std::f32::consts::PI * r * r;
             Ok(emissive.then_some(EmitterSurface {
                 area,
@@ -127,7 +139,10 @@ pub fn add_object(
             )?;
             let mesh = Mesh::new(v.to_vec(), vec![[0, 1, 2]]);
             let surface = emissive.then(|| surface(&mesh, Affine3A::IDENTITY));
-            ctx.builder.mesh(mesh, material);
+            let id = ctx.builder.mesh(mesh, material);
+            if let Some(m) = motion {
+                ctx.builder.motion(id, m);
+            }
             Ok(surface)
         }
         ObjectKind::Mesh | ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
@@ -186,12 +201,40 @@ pub fn add_object(
                     id
                 }
             };
-            ctx.builder.instance(id, transform, material);
+            let object = ctx.builder.instance(id, transform, material);
+            if let Some(m) = motion {
+                ctx.builder.motion(object, m);
+            }
             Ok(emissive
                 .then(|| ctx.builder.stored_mesh(id).map(|m| surface(m, transform)))
                 .flatten())
         }
     }
+}
+
+/// The object's motion, if it has one, checked against what it is.
+fn moving(
+    ctx: &Context,
+    d: &ObjectDesc,
+    emissive: bool,
+) -> Result<Option<lucent::motion::Motion>, LoadError> {
+    let Some(desc) = &d.motion else {
+        return Ok(None);
+    };
+    let m = super::motion::motion(ctx.source, desc)?;
+    if emissive && !m.is_static() {
+        return Err(ctx.source.error(
+            desc.span(),
+            "an object that emits light cannot move: the light tables are built once for every instant (give it no `motion`, or a material without `emission`)",
+        ));
+    }
+    if d.kind == ObjectKind::Sphere && !m.scales_uniformly() {
+        return Err(ctx.source.error(
+            desc.span(),
+            "a sphere's motion must scale alike on every axis (give `scale` as one number)",
+        ));
+    }
+    Ok(Some(m))
 }
 
 /// The object's placement: `transform`, or scale, then rotate about x, y, z, then translate.

@@ -1,7 +1,8 @@
 //! The `[camera]` table.
 
-use super::{Finite, Vector};
+use super::{Finite, MotionDesc, Vector};
 use serde::{Deserialize, Serialize};
+use toml::Spanned;
 
 /// `[camera]`: a pinhole camera, or a thin lens when `aperture` is given.
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -24,6 +25,9 @@ pub struct CameraDesc {
     /// distance to `look_at`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub focus_distance: Option<Finite>,
+    /// How the camera moves (see [`MotionDesc`]): the eye as a point, the view with it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<Spanned<MotionDesc>>,
 }
 
 fn default_up() -> Vector {

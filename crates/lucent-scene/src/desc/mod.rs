@@ -8,6 +8,7 @@
 pub mod camera;
 pub mod light;
 pub mod material;
+pub mod motion;
 pub mod object;
 pub mod settings;
 pub mod values;
@@ -15,6 +16,7 @@ pub mod values;
 pub use camera::CameraDesc;
 pub use light::{FalloffName, LightDesc, LightKind};
 pub use material::{DiffuseDesc, MaterialDesc, MaterialKind};
+pub use motion::{KeyDesc, MotionDesc, OrbitDesc, OscillateDesc, RepeatName};
 pub use object::{ObjectDesc, ObjectKind};
 pub use settings::{ImageDesc, IntegratorName, RenderDesc, WorldDesc};
 pub use values::{Color, Finite, Matrix, Scale, Vector};

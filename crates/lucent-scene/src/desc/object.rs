@@ -1,6 +1,6 @@
 //! `[[object]]` tables.
 
-use super::{Finite, Matrix, Scale, Vector};
+use super::{Finite, Matrix, MotionDesc, Scale, Vector};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -92,6 +92,9 @@ pub struct ObjectDesc {
     /// Placement: scaled by this first (a number or per axis).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<Spanned<Scale>>,
+    /// Every kind but planes: how it moves (see [`MotionDesc`]), after its placement.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<Spanned<MotionDesc>>,
 }
 
 impl ObjectDesc {
@@ -113,6 +116,7 @@ impl ObjectDesc {
             translate: None,
             rotate: None,
             scale: None,
+            motion: None,
         }
     }
 }

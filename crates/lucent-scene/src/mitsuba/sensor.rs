@@ -257,6 +257,7 @@ pub fn read<'a>(
             fov: Finite(fov_y as f32),
             aperture: None,
             focus_distance: None,
+            motion: None,
         },
     );
     desc.image.width = Spanned::new(0..0, width);

@@ -1,14 +1,17 @@
 //! Collecting a scene's parts, checking them, and building the accelerators.
 
+use super::animation::{Animation, moved_sphere};
 use super::{Merged, MeshAccel, MeshEntry, ObjectTag, Scene};
 use crate::Rgb;
 use crate::camera::Camera;
 use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
 use crate::material::Material;
+use crate::motion::Motion;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, Transform, TriangleTest};
 use crate::texture::ImageTexture;
 use glam::Affine3A;
 use lucent_accel::{Aabb, AccelKind, WideTriangleBvh};
+use std::sync::Arc;
 use std::time::Instant;
 use thiserror::Error;
 
@@ -61,6 +64,25 @@ pub enum SceneError {
         /// What is wrong.
         why: String,
     },
+    /// A motion is given for an object that does not exist.
+    #[error("a motion is given for object {object}, but the scene has {count} objects")]
+    NoSuchObject {
+        /// The object id given.
+        object: u32,
+        /// How many objects exist.
+        count: u32,
+    },
+    /// A motion is given for an infinite plane.
+    #[error("object {0} is an infinite plane, which cannot move")]
+    PlaneCannotMove(u32),
+    /// A motion is given for an object that emits light.
+    #[error(
+        "object {0} emits light and cannot move: the light tables of the path tracer are built once for every instant"
+    )]
+    EmitterCannotMove(u32),
+    /// A sphere's motion scales unevenly.
+    #[error("object {0} is a sphere: its motion must scale alike on every axis")]
+    SphereScaleNotUniform(u32),
     /// A texture or the environment names an image that does not exist.
     #[error("image {image} is used, but the scene has {count} images")]
     NoSuchImage {
@@ -85,6 +107,8 @@ pub struct SceneBuilder {
     planes: Vec<(Plane, ObjectTag)>,
     meshes: Vec<Mesh>,
     instances: Vec<(u32, Affine3A, ObjectTag)>,
+    motions: Vec<(u32, Motion)>,
+    camera_motion: Option<Motion>,
     objects: u32,
     accelerator: AccelKind,
     triangle_test: TriangleTest,
@@ -105,6 +129,8 @@ impl SceneBuilder {
             planes: vec![],
             meshes: vec![],
             instances: vec![],
+            motions: vec![],
+            camera_motion: None,
             objects: 0,
             accelerator: AccelKind::default(),
             triangle_test: TriangleTest::default(),
@@ -217,6 +243,62 @@ impl SceneBuilder {
         self.instance(id, Affine3A::IDENTITY, material)
     }
 
+    /// Moves object `object` (an id from [`SceneBuilder::sphere`], [`SceneBuilder::instance`]
+    /// or [`SceneBuilder::mesh`]) by `motion`: at time `t` it is at `motion.at(t) · its
+    /// placement` (a sphere's centre is carried, its radius scaled). A later call for the same
+    /// object replaces the motion. Planes cannot move, nor objects that emit light (unless the
+    /// motion is static), and a sphere's motion must scale alike on every axis: [`build`]
+    /// refuses them.
+    ///
+    /// [`build`]: SceneBuilder::build
+    pub fn motion(&mut self, object: u32, motion: Motion) -> &mut Self {
+        self.motions.push((object, motion));
+        self
+    }
+
+    /// Moves the camera by `motion` (see [`crate::camera::Camera::moved`]).
+    pub fn camera_motion(&mut self, motion: Motion) -> &mut Self {
+        self.camera_motion = Some(motion);
+        self
+    }
+
+    /// Each object's motion (the last given), checked; `None` where it stands still.
+    fn motions(&self) -> Result<Vec<Option<Motion>>, SceneError> {
+        let mut of = vec![None; self.objects as usize];
+        for (object, motion) in &self.motions {
+            let Some(slot) = of.get_mut(*object as usize) else {
+                return Err(SceneError::NoSuchObject {
+                    object: *object,
+                    count: self.objects,
+                });
+            };
+            *slot = Some(motion.clone());
+        }
+        for (_, tag) in &self.planes {
+            if of[tag.object as usize].is_some() {
+                return Err(SceneError::PlaneCannotMove(tag.object));
+            }
+        }
+        for (_, tag) in &self.spheres {
+            if of[tag.object as usize]
+                .as_ref()
+                .is_some_and(|m| !m.scales_uniformly())
+            {
+                return Err(SceneError::SphereScaleNotUniform(tag.object));
+            }
+        }
+        let tags = self.spheres.iter().map(|s| s.1);
+        for tag in tags.chain(self.instances.iter().map(|i| i.2)) {
+            let moves = of[tag.object as usize]
+                .as_ref()
+                .is_some_and(|m| !m.is_static());
+            if moves && !self.materials[tag.material as usize].ke.is_black() {
+                return Err(SceneError::EmitterCannotMove(tag.object));
+            }
+        }
+        Ok(of)
+    }
+
     fn check(&self) -> Result<(), SceneError> {
         let tags = self
             .spheres
@@ -284,9 +366,48 @@ impl SceneBuilder {
     }
 
     /// Checks the parts and builds the accelerators.
-    pub fn build(self) -> Result<Scene, SceneError> {
+    pub fn build(mut self) -> Result<Scene, SceneError> {
         self.check()?;
+        let motions = self.motions()?;
         let start = Instant::now();
+        // Static motions are applied once; the others are kept with the objects' rest state,
+        // and the objects are put at t = 0 (their boxes then count in the scene's bounds, as
+        // the light tables need).
+        let mut moving_spheres = Vec::new();
+        for (i, (s, tag)) in self.spheres.iter_mut().enumerate() {
+            let Some(motion) = motions[tag.object as usize].clone() else {
+                continue;
+            };
+            let rest = *s;
+            *s = moved_sphere(&rest, &motion, 0.0);
+            if !motion.is_static() {
+                moving_spheres.push((i as u32, rest, motion));
+            }
+        }
+        let mut moving_instances = Vec::new();
+        for (k, (_, to_world, tag)) in self.instances.iter_mut().enumerate() {
+            let Some(motion) = motions[tag.object as usize].clone() else {
+                continue;
+            };
+            let placement = *to_world;
+            *to_world = motion.at(0.0) * placement;
+            if !motion.is_static() {
+                moving_instances.push((k as u32, placement, motion));
+            }
+        }
+        let mut sphere_moves = vec![false; self.spheres.len()];
+        for (i, _, _) in &moving_spheres {
+            sphere_moves[*i as usize] = true;
+        }
+        let mut instance_moves = vec![false; self.instances.len()];
+        for (k, _, _) in &moving_instances {
+            instance_moves[*k as usize] = true;
+        }
+        let camera_motion = self.camera_motion.take();
+        if let Some(m) = camera_motion.as_ref().filter(|m| m.is_static()) {
+            self.camera = self.camera.moved(m.at(0.0));
+        }
+        let camera_motion = camera_motion.filter(|m| !m.is_static());
         let kind = self.accelerator;
         let packed = kind == AccelKind::Wide && self.triangle_test == TriangleTest::Watertight;
         let mesh_accel = |mesh: &Mesh| -> MeshAccel {
@@ -306,12 +427,14 @@ impl SceneBuilder {
         }
         // Within a budget of copied triangles: past it, placements stay instances.
         let mut budget = MERGE_BUDGET;
+        // A moving instance is never merged: its triangles move with their transform.
         let merge: Vec<bool> = self
             .instances
             .iter()
-            .map(|&(mesh, _, _)| {
+            .zip(&instance_moves)
+            .map(|(&(mesh, _, _), &moves)| {
                 let n = self.meshes[mesh as usize].triangles.len();
-                let wanted = placements[mesh as usize] == 1 || n <= MERGE_TRIANGLES;
+                let wanted = !moves && (placements[mesh as usize] == 1 || n <= MERGE_TRIANGLES);
                 let fits = n <= budget;
                 if wanted && fits {
                     budget -= n;
@@ -355,17 +478,28 @@ impl SceneBuilder {
 
         let mut primitives = Vec::with_capacity(self.spheres.len() + instances.len());
         let mut boxes = Vec::with_capacity(primitives.capacity());
+        // The boxes of the moving objects at t = 0.
+        let mut moving_bounds = Aabb::EMPTY;
         for (i, (s, _)) in self.spheres.iter().enumerate() {
+            if sphere_moves[i] {
+                moving_bounds = moving_bounds.union(s.bounds());
+                continue;
+            }
             primitives.push(Primitive::Sphere(i as u32));
             boxes.push(s.bounds());
         }
         for (i, (inst, _)) in instances.iter().enumerate() {
+            let local = meshes[inst.mesh as usize].bounds;
+            let world = inst.transform.map_or(local, |t| t.bounds_to_world(local));
+            if instance_moves[i] {
+                moving_bounds = moving_bounds.union(world);
+                continue;
+            }
             if merge[i] {
                 continue;
             }
             primitives.push(Primitive::Instance(i as u32));
-            let local = meshes[inst.mesh as usize].bounds;
-            boxes.push(inst.transform.map_or(local, |t| t.bounds_to_world(local)));
+            boxes.push(world);
         }
         if let Some(m) = &merged {
             primitives.push(Primitive::Merged);
@@ -373,7 +507,8 @@ impl SceneBuilder {
         }
         let accel = kind.build(&boxes);
         let build_time = start.elapsed();
-        let bounds = boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x));
+        let static_bounds = boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x));
+        let bounds = static_bounds.union(moving_bounds);
         let emitters = emitters(
             &self.materials,
             &self.spheres,
@@ -387,28 +522,43 @@ impl SceneBuilder {
             self.objects,
             bounds,
         );
-        Ok(Scene {
+        let animated =
+            !(moving_spheres.is_empty() && moving_instances.is_empty() && camera_motion.is_none());
+        let animation = animated.then(|| {
+            Arc::new(Animation {
+                spheres: moving_spheres,
+                instances: moving_instances,
+                camera: camera_motion.map(|m| (self.camera, m)),
+                static_bounds,
+                kind,
+            })
+        });
+        let mut scene = Scene {
             camera: self.camera,
             background: self.background,
             ambient: self.ambient,
             materials: self.materials,
             lights: self.lights,
-            images: self.images,
+            images: Arc::new(self.images),
             environment: self.environment,
-            spheres: self.spheres,
-            planes: self.planes,
-            meshes,
-            instances,
-            merged,
+            spheres: Arc::new(self.spheres),
+            planes: Arc::new(self.planes),
+            meshes: Arc::new(meshes),
+            instances: Arc::new(instances),
+            merged: merged.map(Arc::new),
             objects: self.objects,
-            primitives,
-            primitive_bounds: boxes,
-            accel,
+            primitives: Arc::new(primitives),
+            primitive_bounds: Arc::new(boxes),
+            accel: Arc::new(accel),
+            moving: None,
+            animation,
             bounds,
             triangle_test: self.triangle_test,
             build_time,
-            emitters,
-        })
+            emitters: Arc::new(emitters),
+        };
+        scene.place(0.0);
+        Ok(scene)
     }
 }
 

@@ -7,10 +7,15 @@
 //! one accelerator per mesh over its triangles, entered with the ray carried into the mesh's
 //! object space. Infinite planes are tested beside them.
 //!
+//! Objects that move (see [`crate::motion`]) sit in a second, small top level that
+//! [`Scene::at_time`] rebuilds for each instant; everything else is shared between the
+//! instants, so cloning a scene or taking it at another time copies only small arrays.
+//!
 //! Ties: when two surfaces are hit at exactly the same `t`, the one added first wins (planes
 //! before spheres, spheres before meshes, lower triangle index first), whatever the
 //! accelerator, so that every accelerator renders the same image.
 
+mod animation;
 mod beam;
 mod builder;
 mod query;
@@ -25,7 +30,9 @@ use crate::material::Material;
 use crate::shape::SurfaceHit;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, TriangleTest};
 use crate::texture::ImageTexture;
+use animation::{Animation, Moving};
 use lucent_accel::{Aabb, AccelInfo, AccelKind, AnyAccelerator, WideTriangleBvh};
+use std::sync::Arc;
 use std::time::Duration;
 
 /// Which material a shape wears and which scene object it belongs to.
@@ -121,28 +128,33 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Light sources.
     pub lights: Vec<Light>,
-    /// Images that textures refer to by index.
-    pub images: Vec<ImageTexture>,
+    /// Images that textures refer to by index (shared between clones).
+    pub images: Arc<Vec<ImageTexture>>,
     /// A lat-long image (an index into `images`) that rays hitting nothing see instead of
     /// `background`.
     pub environment: Option<u32>,
-    spheres: Vec<(Sphere, ObjectTag)>,
-    planes: Vec<(Plane, ObjectTag)>,
-    meshes: Vec<MeshEntry>,
-    instances: Vec<(Instance, ObjectTag)>,
-    merged: Option<Merged>,
+    spheres: Arc<Vec<(Sphere, ObjectTag)>>,
+    planes: Arc<Vec<(Plane, ObjectTag)>>,
+    meshes: Arc<Vec<MeshEntry>>,
+    instances: Arc<Vec<(Instance, ObjectTag)>>,
+    merged: Option<Arc<Merged>>,
     objects: u32,
-    /// Top-level primitives: spheres first, then the instances not merged, then the merged
-    /// mesh.
-    primitives: Vec<Primitive>,
-    /// The world-space box of each top-level primitive (what `accel` was built from).
-    primitive_bounds: Vec<Aabb>,
-    accel: AnyAccelerator,
+    /// Top-level primitives that stand still: spheres first, then the instances not merged,
+    /// then the merged mesh.
+    primitives: Arc<Vec<Primitive>>,
+    /// The world-space box of each of them (what `accel` was built from; beams test them).
+    primitive_bounds: Arc<Vec<Aabb>>,
+    accel: Arc<AnyAccelerator>,
+    /// The top level over the moving objects at this scene's instant.
+    moving: Option<Arc<Moving>>,
+    /// What moves, and how; `None` for a static scene.
+    animation: Option<Arc<Animation>>,
     bounds: Aabb,
     triangle_test: TriangleTest,
     build_time: Duration,
-    /// The lights as the path tracer samples them (area lights and the environment too).
-    pub emitters: Emitters,
+    /// The lights as the path tracer samples them (area lights and the environment too),
+    /// shared between clones.
+    pub emitters: Arc<Emitters>,
 }
 
 /// Counts of what a scene holds, for `lucent info` and statistics.
@@ -235,8 +247,15 @@ impl Scene {
     pub fn accel_report(&self) -> AccelReport {
         let top = self.accel.info();
         let merged = self.merged.iter().map(|m| m.entry.accel.info());
+        let moving = self.moving.iter().map(|m| m.accel.info());
         let levels = self.meshes.iter().map(|m| m.accel.info()).chain(merged);
-        let (mut nodes, mut bytes, mut mesh_depth) = (top.nodes, top.bytes, 0);
+        let (mut nodes, mut bytes) = (0, 0);
+        for info in moving {
+            nodes += info.nodes;
+            bytes += info.bytes;
+        }
+        let moving_primitives = self.moving.as_ref().map_or(0, |m| m.primitives.len());
+        let (mut nodes, mut bytes, mut mesh_depth) = (top.nodes + nodes, top.bytes + bytes, 0);
         for info in levels {
             nodes += info.nodes;
             bytes += info.bytes;
@@ -248,7 +267,7 @@ impl Scene {
             nodes,
             depth: top.depth + mesh_depth,
             bytes,
-            primitives: self.primitives.len() + self.counts().unique_triangles,
+            primitives: self.primitives.len() + moving_primitives + self.counts().unique_triangles,
         }
     }
 
@@ -256,7 +275,7 @@ impl Scene {
     /// tracers, which take a triangle soup).
     pub fn world_triangles(&self) -> Vec<[glam::Vec3; 3]> {
         let mut out = Vec::with_capacity(self.counts().triangles);
-        for (instance, _) in &self.instances {
+        for (instance, _) in self.instances.iter() {
             let mesh = &self.meshes[instance.mesh as usize].mesh;
             for t in 0..mesh.triangles.len() as u32 {
                 let v = mesh.vertices(t);

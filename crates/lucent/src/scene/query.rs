@@ -202,20 +202,22 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let mut t_max = nearest.t;
-        let mut leaf = |p: u32, cut: Option<&Cut>, t_max: &mut f32| {
-            let found = match self.primitives[p as usize] {
+        let mut leaf = |primitive: Primitive,
+                        cut: Option<&Cut>,
+                        t_max: &mut f32,
+                        nearest: &mut Nearest| {
+            let found = match primitive {
                 Primitive::Sphere(i) => {
                     let sphere = &self.spheres[i as usize].0;
                     match sphere_hit(sphere, ray, inclusive(*t_max), leaving_sphere(from, i)) {
-                        Some(t) => nearest.offer(t, (p, 0), Candidate::Sphere(i, t)),
+                        Some(t) => nearest.offer(t, (i, 0), Candidate::Sphere(i, t)),
                         None => false,
                     }
                 }
                 Primitive::Instance(k) => {
                     let skip = leaving_triangle(from, k);
                     let mut search = MeshSearch {
-                        nearest: &mut nearest,
+                        nearest: &mut *nearest,
                         stats: &mut mesh_stats,
                         cut,
                     };
@@ -223,7 +225,7 @@ impl Scene {
                 }
                 Primitive::Merged => {
                     let mut search = MeshSearch {
-                        nearest: &mut nearest,
+                        nearest: &mut *nearest,
                         stats: &mut mesh_stats,
                         cut,
                     };
@@ -235,30 +237,43 @@ impl Scene {
             }
             found
         };
+        let prims = self.primitives.as_slice();
         match beam.and_then(|b| b.top.as_ref()) {
             // The primitives the beam touches, in any order: the nearest hit and its tie rule
             // do not depend on it. The box test is the one the accelerators make.
             Some(touched) => {
+                let mut t_max = nearest.t;
                 for (p, cut) in touched {
                     if self.primitive_bounds[*p as usize].hit(ray, t_max).is_some() {
-                        leaf(*p, cut.as_ref(), &mut t_max);
+                        leaf(prims[*p as usize], cut.as_ref(), &mut t_max, &mut nearest);
                     }
                 }
             }
             // One top-level primitive (a scene merged into one mesh) needs no top level.
-            None if self.primitives.len() == 1 => {
-                leaf(0, None, &mut t_max);
+            None if prims.len() == 1 => {
+                leaf(prims[0], None, &mut { nearest.t }, &mut nearest);
             }
             None => {
-                self.accel
-                    .closest_hit(ray, t_max, stats, |p, t_max| leaf(p, None, t_max));
+                let t_max = nearest.t;
+                self.accel.closest_hit(ray, t_max, stats, |p, tm| {
+                    leaf(prims[p as usize], None, tm, &mut nearest)
+                });
             }
+        }
+        // The moving objects, beyond what stands still (a beam knows only the static level);
+        // the tie rule does not depend on which level a primitive is in.
+        if let Some(m) = &self.moving {
+            let t_max = nearest.t;
+            m.accel.closest_hit(ray, t_max, stats, |p, tm| {
+                leaf(m.primitives[p as usize], None, tm, &mut nearest)
+            });
         }
         *stats += mesh_stats;
         nearest.candidate.map(|c| self.surface(ray, c))
     }
 
-    /// The tie key of triangle `tri` of instance `k`: instances after the spheres, in order.
+    /// The tie key of triangle `tri` of instance `k`: instances after the spheres (whose key
+    /// is `(sphere, 0)`), in order.
     #[inline]
     fn triangle_key(&self, k: u32, tri: u32) -> (u32, u32) {
         (self.spheres.len() as u32 + k, tri)
@@ -504,7 +519,7 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let leaf = |p: u32| match self.primitives[p as usize] {
+        let mut leaf = |primitive: Primitive| match primitive {
             Primitive::Sphere(i) => {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let crossings = match leaving_sphere(from, i) {
@@ -537,12 +552,18 @@ impl Scene {
                 )
             }
         };
-        let blocked = if let [_] = self.primitives.as_slice() {
-            let mut leaf = leaf;
-            leaf(0)
+        let prims = self.primitives.as_slice();
+        let mut blocked = if let [only] = prims {
+            leaf(*only)
         } else {
-            self.accel.any_hit(ray, t_max, stats, leaf)
+            self.accel
+                .any_hit(ray, t_max, stats, |p| leaf(prims[p as usize]))
         };
+        if !blocked && let Some(m) = &self.moving {
+            blocked = m
+                .accel
+                .any_hit(ray, t_max, stats, |p| leaf(m.primitives[p as usize]));
+        }
         *stats += mesh_stats;
         blocked
     }
