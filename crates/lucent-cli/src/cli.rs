@@ -30,6 +30,64 @@ pub enum Command {
     Convert(ConvertArgs),
     /// Measure every accelerator on the same rays: build time, memory, million rays per second.
     Bench(BenchArgs),
+    /// Measure a claim of the literature in a simulation (see `lucent study frameless --help`).
+    #[command(subcommand)]
+    Study(StudyCommand),
+}
+
+/// `lucent study`'s studies.
+#[derive(Debug, Subcommand)]
+pub enum StudyCommand {
+    /// Double buffering, frameless and adaptive frameless rendering at one sample rate: error
+    /// against the ideal image over time, latency and stale pixels; and the sample rate at which
+    /// each frameless mode matches double buffering's error.
+    Frameless(FramelessStudyArgs),
+}
+
+/// `lucent study frameless`.
+#[derive(Debug, Args)]
+pub struct FramelessStudyArgs {
+    /// Scene file with motion (`motion` keys); default: the built-in moving scene.
+    pub scene: Option<PathBuf>,
+    /// Settings that override the scene file's (the integrator must be deterministic).
+    #[command(flatten)]
+    pub overrides: Overrides,
+    /// Samples every mode traces per second of simulated time.
+    #[arg(long, default_value_t = 400_000.0, value_parser = positive_number)]
+    pub samples_per_second: f64,
+    /// Display refreshes per second.
+    #[arg(long, default_value_t = 60.0, value_parser = positive_number)]
+    pub refresh: f64,
+    /// Seconds of scene time measured.
+    #[arg(long, default_value_t = 6.0, value_parser = positive_seconds)]
+    pub duration: f64,
+    /// Seconds simulated before measuring, from an exact first picture. Default: long enough
+    /// for the slowest run to sample every pixel twice (at least 2 s).
+    #[arg(long, value_parser = non_negative_seconds)]
+    pub warmup: Option<f64>,
+    /// Lower rates tried for the frameless modes: the full rate divided by each of these.
+    #[arg(long, value_delimiter = ',', default_value = "2,4,8,16,32", value_parser = positive_number)]
+    pub rate_divisors: Vec<f64>,
+    /// Seed of the sample orders and of the instants of change.
+    #[arg(long, default_value_t = 1)]
+    pub study_seed: u64,
+    /// Threads tracing the samples; 0 uses every core (the figures do not depend on it).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
+    pub threads: u16,
+    /// Where to write every refresh of every run (mode, samples_per_second, time_s, rmse,
+    /// stale_fraction).
+    #[arg(long, default_value = "frameless-study.csv")]
+    pub csv: PathBuf,
+    /// Where to write the plot (SVG): error over time per mode, and error against sample rate.
+    #[arg(long, default_value = "frameless-study.svg")]
+    pub plot: PathBuf,
+    /// Also write what each mode shows at this instant (and the ideal image) as PNGs in
+    /// --frames-dir.
+    #[arg(long, value_name = "SECONDS", requires = "frames_dir")]
+    pub frames_at: Option<f64>,
+    /// Folder of the --frames-at pictures (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub frames_dir: Option<PathBuf>,
 }
 
 /// Integrators selectable on the command line.
@@ -361,6 +419,24 @@ fn size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s.split_once('x').ok_or_else(bad)?;
     let side = |v: &str| v.parse::<u32>().ok().filter(|v| (1..=65536).contains(v));
     Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
+}
+
+/// A positive, finite number.
+fn positive_number(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
+        _ => Err(format!("expected a positive number, got `{s}`")),
+    }
+}
+
+/// A number of seconds from 0 to a year.
+fn non_negative_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v >= 0.0 && v <= f64::from(lucent_scene::build::MAX_TIME_LIMIT) => Ok(v),
+        _ => Err(format!(
+            "expected a number of seconds from 0 to a year, got `{s}`"
+        )),
+    }
 }
 
 /// A positive, finite number of seconds (at most a year).

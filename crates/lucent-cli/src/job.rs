@@ -31,10 +31,25 @@ impl Job {
         let options = LoadOptions {
             sandbox: overrides.sandbox,
         };
-        let mut file = match scene {
+        let file = match scene {
             Some(p) => SceneFile::read_with(p, &options)?,
             None => SceneFile::default_scene(),
         };
+        Self::from_file(file, scene, overrides, start)
+    }
+
+    /// The built-in moving scene (of `lucent study frameless`) with `overrides` applied.
+    pub fn load_moving(overrides: &Overrides) -> anyhow::Result<Self> {
+        let start = std::time::Instant::now();
+        Self::from_file(SceneFile::moving_scene(), None, overrides, start)
+    }
+
+    fn from_file(
+        mut file: SceneFile,
+        scene: Option<&Path>,
+        overrides: &Overrides,
+        start: std::time::Instant,
+    ) -> anyhow::Result<Self> {
         apply(&mut file, overrides)?;
         let mut loaded = file.build()?;
         if let Some(t) = overrides.time {

@@ -202,41 +202,39 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let mut leaf = |primitive: Primitive,
-                        cut: Option<&Cut>,
-                        t_max: &mut f32,
-                        nearest: &mut Nearest| {
-            let found = match primitive {
-                Primitive::Sphere(i) => {
-                    let sphere = &self.spheres[i as usize].0;
-                    match sphere_hit(sphere, ray, inclusive(*t_max), leaving_sphere(from, i)) {
-                        Some(t) => nearest.offer(t, (i, 0), Candidate::Sphere(i, t)),
-                        None => false,
+        let mut leaf =
+            |primitive: Primitive, cut: Option<&Cut>, t_max: &mut f32, nearest: &mut Nearest| {
+                let found = match primitive {
+                    Primitive::Sphere(i) => {
+                        let sphere = &self.spheres[i as usize].0;
+                        match sphere_hit(sphere, ray, inclusive(*t_max), leaving_sphere(from, i)) {
+                            Some(t) => nearest.offer(t, (i, 0), Candidate::Sphere(i, t)),
+                            None => false,
+                        }
                     }
+                    Primitive::Instance(k) => {
+                        let skip = leaving_triangle(from, k);
+                        let mut search = MeshSearch {
+                            nearest: &mut *nearest,
+                            stats: &mut mesh_stats,
+                            cut,
+                        };
+                        self.nearest_in_instance(k, ray, *t_max, skip, &mut search)
+                    }
+                    Primitive::Merged => {
+                        let mut search = MeshSearch {
+                            nearest: &mut *nearest,
+                            stats: &mut mesh_stats,
+                            cut,
+                        };
+                        self.nearest_in_merged(ray, *t_max, from, &mut search)
+                    }
+                };
+                if found {
+                    *t_max = nearest.t;
                 }
-                Primitive::Instance(k) => {
-                    let skip = leaving_triangle(from, k);
-                    let mut search = MeshSearch {
-                        nearest: &mut *nearest,
-                        stats: &mut mesh_stats,
-                        cut,
-                    };
-                    self.nearest_in_instance(k, ray, *t_max, skip, &mut search)
-                }
-                Primitive::Merged => {
-                    let mut search = MeshSearch {
-                        nearest: &mut *nearest,
-                        stats: &mut mesh_stats,
-                        cut,
-                    };
-                    self.nearest_in_merged(ray, *t_max, from, &mut search)
-                }
+                found
             };
-            if found {
-                *t_max = nearest.t;
-            }
-            found
-        };
         let prims = self.primitives.as_slice();
         match beam.and_then(|b| b.top.as_ref()) {
             // The primitives the beam touches, in any order: the nearest hit and its tie rule

@@ -45,8 +45,10 @@ pub struct StudySettings {
     pub refresh_hz: f64,
     /// Seconds measured.
     pub duration: f64,
-    /// Seconds simulated before the measurement, from an exact picture.
-    pub warmup: f64,
+    /// Seconds simulated before the measurement, from an exact picture; `None`: long enough
+    /// for the slowest run to sample every pixel twice (at least 2 s), so that no run is
+    /// measured while it still shows the first picture.
+    pub warmup: Option<f64>,
     /// Instants per refresh interval that samples are resolved to.
     pub substeps: u32,
     /// The colour difference (per channel, in `[0, 1]`) at which a pixel counts as changed.
@@ -55,6 +57,9 @@ pub struct StudySettings {
     pub rate_divisors: Vec<f64>,
     /// Seed of the schedules' orders and of the latency instants.
     pub seed: u64,
+    /// Keep the pictures of the refresh at this instant (the ideal one, and what each mode
+    /// shows at the full rate).
+    pub capture_at: Option<f64>,
 }
 
 impl Default for StudySettings {
@@ -63,11 +68,12 @@ impl Default for StudySettings {
             samples_per_second: 400_000.0,
             refresh_hz: 60.0,
             duration: 6.0,
-            warmup: 2.0,
+            warmup: None,
             substeps: 8,
             threshold: 0.02,
             rate_divisors: vec![2.0, 4.0, 8.0, 16.0, 32.0],
             seed: 1,
+            capture_at: None,
         }
     }
 }
@@ -143,6 +149,20 @@ pub struct StudyReport {
     pub height: u32,
     /// Every run: the three modes at the full rate first, then the lower rates.
     pub runs: Vec<Run>,
+    /// The pictures of [`StudySettings::capture_at`]: its instant, the ideal image, and what
+    /// each mode showed at the full rate.
+    pub capture: Option<Capture>,
+}
+
+/// The pictures of one refresh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Capture {
+    /// The refresh's instant.
+    pub time: f64,
+    /// The ideal image.
+    pub ideal: Vec<Rgb>,
+    /// What each mode showed, at the full rate.
+    pub shown: Vec<(DisplayMode, Vec<Rgb>)>,
 }
 
 impl StudyReport {
@@ -218,7 +238,12 @@ pub fn run_study(
     }
     let dt = 1.0 / settings.refresh_hz;
     let step = dt / f64::from(settings.substeps.max(1));
-    let start = -settings.warmup;
+    let pixels = n as f64;
+    let slowest = rates.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
+    let warmup = settings
+        .warmup
+        .unwrap_or_else(|| (2.0 * pixels / slowest).max(2.0));
+    let start = -warmup;
     let primer = ideal_at(start);
     let mut live: Vec<Live> = rates
         .iter()
@@ -242,13 +267,14 @@ pub fn run_study(
         })
         .collect();
 
-    let warm = (settings.warmup * settings.refresh_hz).round() as usize;
+    let warm = (warmup * settings.refresh_hz).round() as usize;
     let measured = (settings.duration * settings.refresh_hz).round() as usize;
     let total = warm + measured;
     // Change tracking over the ideal images (from the first measured refresh on).
     let mut previous_ideal: Option<Vec<Rgb>> = None;
     let mut last_change = vec![f64::NEG_INFINITY; n]; // t_i of the latest change
     let mut before_change = vec![f64::NEG_INFINITY; n]; // t_{i-1} of it
+    let mut capture = None;
     for k in 1..=total {
         let (t_prev, t_now) = (start + (k - 1) as f64 * dt, start + k as f64 * dt);
         for l in &mut live {
@@ -273,6 +299,21 @@ pub fn run_study(
                 l.pending.push(c);
                 measure(l, &ideal, &last_change, &before_change, t_now);
             }
+            if settings
+                .capture_at
+                .is_some_and(|at| at > t_prev && at <= t_now)
+            {
+                let shown = live
+                    .iter_mut()
+                    .filter(|l| l.rate == full)
+                    .map(|l| (l.run.mode, l.presenter.present(t_now).to_vec()))
+                    .collect();
+                capture = Some(Capture {
+                    time: t_now,
+                    ideal: ideal.clone(),
+                    shown,
+                });
+            }
             previous_ideal = Some(ideal);
         }
         progress(k, total);
@@ -285,10 +326,14 @@ pub fn run_study(
         })
         .collect();
     StudyReport {
-        settings: settings.clone(),
+        settings: StudySettings {
+            warmup: Some(warmup),
+            ..settings.clone()
+        },
         width,
         height,
         runs,
+        capture,
     }
 }
 

@@ -4,3 +4,4 @@
 //! sample budget per display refresh, so that its figures do not depend on the machine's speed.
 
 pub mod frameless;
+pub mod scene_tracer;

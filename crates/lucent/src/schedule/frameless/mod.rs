@@ -22,12 +22,12 @@
 
 mod adaptive;
 mod double_buffer;
-// mod snapshots;
+mod snapshots;
 mod stochastic;
 
 pub use adaptive::AdaptiveFrameless;
 pub use double_buffer::DoubleBuffer;
-// pub use snapshots::Snapshots;
+pub use snapshots::Snapshots;
 pub use stochastic::Frameless;
 
 use crate::Rgb;

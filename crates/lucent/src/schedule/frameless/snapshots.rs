@@ -32,7 +32,12 @@ impl Snapshots {
 
     /// The instant that samples at `t` are traced at: `t` rounded down to a step.
     pub fn instant(&self, t: f64) -> f64 {
-        (t / self.step).floor() * self.step
+        self.key(t) as f64 * self.step
+    }
+
+    /// Which step `t` falls in; an instant already on a step (up to rounding) stays there.
+    fn key(&self, t: f64) -> i64 {
+        (t / self.step + 1e-6).floor() as i64
     }
 
     /// The scene at `t` (at [`Snapshots::instant`] of it); the scene itself when nothing moves.
@@ -40,7 +45,7 @@ impl Snapshots {
         if !self.base.is_animated() {
             return self.base.clone();
         }
-        let key = (t / self.step).floor() as i64;
+        let key = self.key(t);
         if let Some((_, s)) = self.lock().iter().find(|(k, _)| *k == key) {
             return s.clone();
         }
