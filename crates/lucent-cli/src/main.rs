@@ -11,6 +11,7 @@ mod job;
 mod merge;
 mod output;
 mod render;
+mod view;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -29,6 +30,7 @@ fn main() -> ExitCode {
         cli::Command::Merge(a) => merge::run(&a),
         cli::Command::Convert(a) => convert::run(&a),
         cli::Command::Bench(a) => bench::run(&a),
+        cli::Command::View(a) => view::run(&a),
     };
     match result {
         Ok(code) => code,
