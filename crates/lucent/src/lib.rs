@@ -28,6 +28,7 @@ pub mod scene;
 pub mod schedule;
 pub mod shape;
 pub mod spawn;
+pub mod study;
 pub mod texture;
 
 pub use color::Rgb;

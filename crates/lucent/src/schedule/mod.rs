@@ -5,6 +5,7 @@
 //! with [`adaptive`] supersampling, a tile's pixels take Whitted's corners instead of samples.
 
 pub mod adaptive;
+pub mod frameless;
 pub mod tiles;
 
 pub use tiles::{Tile, tiles};
