@@ -2,6 +2,7 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use lucent::accel::AccelKind;
+use lucent::schedule::frameless::DisplayMode;
 use std::path::PathBuf;
 
 /// lucent: a ray tracer for learning, teaching and using ray tracing.
@@ -232,8 +233,8 @@ pub struct ViewArgs {
     pub scene: Option<PathBuf>,
     /// How the screen is made from the samples: `frameless` (each sample shown at once),
     /// `double-buffer` (whole frames) or `adaptive`.
-    #[arg(long, value_enum, default_value_t = ModeArg::Frameless)]
-    pub mode: ModeArg,
+    #[arg(long, default_value = "frameless", value_parser = mode_parser())]
+    pub mode: DisplayMode,
     /// Render threads; 0 uses every core.
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
     pub threads: u16,
@@ -281,15 +282,11 @@ impl ViewArgs {
     }
 }
 
-/// The viewer's display modes on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ModeArg {
-    /// Every sample straight onto the screen, pixels in a random order (Bishop et al. 1994).
-    Frameless,
-    /// Whole frames, each shown when finished.
-    DoubleBuffer,
-    /// Frameless, with samples steered to where the picture changes.
-    Adaptive,
+/// A display mode by its library name (`double-buffer`, `frameless`, `adaptive`).
+fn mode_parser() -> impl clap::builder::TypedValueParser<Value = DisplayMode> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(DisplayMode::ALL.map(DisplayMode::name))
+        .map(|s| s.parse().expect("a listed mode"))
 }
 
 /// Redraws per second, 1 to 1000.

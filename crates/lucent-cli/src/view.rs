@@ -8,9 +8,8 @@ use std::process::ExitCode;
 /// Runs `lucent view`.
 #[cfg(feature = "viewer")]
 pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
-    use crate::cli::ModeArg;
     use crate::job::Job;
-    use lucent_view::{DisplayMode, Options, Pose};
+    use lucent_view::{Options, Pose};
 
     let job = Job::load(args.scene.as_deref(), &args.overrides())?;
     let loaded = job.loaded;
@@ -23,11 +22,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
         lens: camera.lens(),
     };
     let options = Options {
-        mode: match args.mode {
-            ModeArg::Frameless => DisplayMode::Frameless,
-            ModeArg::DoubleBuffer => DisplayMode::DoubleBuffer,
-            ModeArg::Adaptive => DisplayMode::Adaptive,
-        },
+        mode: args.mode,
         threads: usize::from(args.threads),
         scale: args.scale,
         size: args.size.unwrap_or((camera.width(), camera.height())),

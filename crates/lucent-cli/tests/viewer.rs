@@ -10,16 +10,25 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 use x11rb::connection::Connection;
 use x11rb::protocol::xproto::{
-    AtomEnum, ClientMessageEvent, ConnectionExt, EventMask, ImageFormat, MapState, Window,
+    self, AtomEnum, ClientMessageEvent, ConnectionExt, EventMask, ImageFormat, MapState, Window,
 };
+use x11rb::protocol::xtest::ConnectionExt as _;
 use x11rb::rust_connection::RustConnection;
 
-/// Kills and reaps its process when dropped: neither Xvfb nor the viewer outlives the test,
-/// even when an assertion fails.
+/// Ends and reaps its process when dropped: neither Xvfb nor the viewer outlives the test,
+/// even when an assertion fails. SIGTERM first, so that Xvfb removes its socket and lock
+/// file; SIGKILL if it is still there a second later.
 struct Reaped(Child);
 
 impl Drop for Reaped {
     fn drop(&mut self) {
+        if let Ok(None) = self.0.try_wait() {
+            let _ = Command::new("kill").arg(self.0.id().to_string()).status();
+            let deadline = Instant::now() + Duration::from_secs(1);
+            while Instant::now() < deadline && matches!(self.0.try_wait(), Ok(None)) {
+                std::thread::sleep(Duration::from_millis(10));
+            }
+        }
         let _ = self.0.kill();
         let _ = self.0.wait();
     }
@@ -168,6 +177,92 @@ impl Looks {
     }
 }
 
+/// The window's title (`_NET_WM_NAME`, UTF-8).
+fn title(conn: &RustConnection, w: Window) -> String {
+    let name = conn
+        .intern_atom(false, b"_NET_WM_NAME")
+        .unwrap()
+        .reply()
+        .unwrap()
+        .atom;
+    let p = conn
+        .get_property(false, w, name, AtomEnum::ANY, 0, 1024)
+        .unwrap()
+        .reply()
+        .unwrap();
+    String::from_utf8_lossy(&p.value).into_owned()
+}
+
+/// Input as a person gives it, through the XTEST extension.
+struct Person<'a> {
+    conn: &'a RustConnection,
+    root: Window,
+}
+
+impl Person<'_> {
+    fn send(&self, kind: u8, detail: u8, (x, y): (i16, i16)) {
+        self.conn
+            .xtest_fake_input(kind, detail, 0, self.root, x, y, 0)
+            .unwrap();
+        self.conn.flush().unwrap();
+    }
+
+    fn move_to(&self, at: (i16, i16)) {
+        self.send(xproto::MOTION_NOTIFY_EVENT, 0, at);
+        std::thread::sleep(Duration::from_millis(15));
+    }
+
+    /// Left-drags from `from` by `dx` pixels, in steps as a hand would.
+    fn drag(&self, from: (i16, i16), dx: i16) {
+        self.move_to(from);
+        self.send(xproto::BUTTON_PRESS_EVENT, 1, from);
+        for i in 1..=10 {
+            self.move_to((from.0 + dx * i / 10, from.1));
+        }
+        self.send(xproto::BUTTON_RELEASE_EVENT, 1, (from.0 + dx, from.1));
+    }
+
+    /// Presses and releases the key that types `keysym` (a Latin-1 letter's code).
+    fn tap(&self, keysym: u32) {
+        let setup = self.conn.setup();
+        let (first, count) = (setup.min_keycode, setup.max_keycode - setup.min_keycode + 1);
+        let map = self
+            .conn
+            .get_keyboard_mapping(first, count)
+            .unwrap()
+            .reply()
+            .unwrap();
+        let per = usize::from(map.keysyms_per_keycode);
+        let index = map
+            .keysyms
+            .chunks(per)
+            .position(|syms| syms.contains(&keysym))
+            .expect("the keyboard has the key");
+        let code = first + index as u8;
+        self.send(xproto::KEY_PRESS_EVENT, code, (0, 0));
+        std::thread::sleep(Duration::from_millis(15));
+        self.send(xproto::KEY_RELEASE_EVENT, code, (0, 0));
+    }
+}
+
+/// The share of pixels that differ by more than a little between two screenshots.
+fn changed(a: &[[u8; 3]], b: &[[u8; 3]]) -> f64 {
+    let far = |p: &[u8; 3], q: &[u8; 3]| p.iter().zip(q).any(|(x, y)| x.abs_diff(*y) > 24);
+    a.iter().zip(b).filter(|(p, q)| far(p, q)).count() as f64 / a.len() as f64
+}
+
+/// Polls `f` every 50 ms until it holds, for at most `seconds`.
+fn within(seconds: u64, mut f: impl FnMut() -> bool) -> bool {
+    let deadline = Instant::now() + Duration::from_secs(seconds);
+    while Instant::now() < deadline {
+        if f() {
+            return true;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    false
+}
+
 fn save_png(path: &Path, pixels: &[[u8; 3]], width: u16, height: u16) {
     let bytes: Vec<u8> = pixels.iter().flatten().copied().collect();
     image::save_buffer(
@@ -228,13 +323,13 @@ fn the_viewer_shows_the_scene_under_xvfb_and_closes_on_request() {
     // …and fills with the scene: sky, and both colours of the checkerboard.
     let deadline = Instant::now() + Duration::from_secs(15);
     let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("viewer-screenshot.png");
-    loop {
+    let before = loop {
         std::thread::sleep(Duration::from_millis(250));
         let pixels = screenshot(&conn, window, width, height);
         let l = looks(&pixels);
         if l.is_the_default_scene() {
             save_png(&shot, &pixels, width, height);
-            break;
+            break pixels;
         }
         if Instant::now() > deadline {
             save_png(&shot, &pixels, width, height);
@@ -243,7 +338,43 @@ fn the_viewer_shows_the_scene_under_xvfb_and_closes_on_request() {
                 shot.display()
             );
         }
-    }
+    };
+
+    // A drag orbits the camera: the picture turns.
+    let person = Person { conn: &conn, root };
+    person.drag((300, 300), 150);
+    let mut after = Vec::new();
+    let turned = within(5, || {
+        after = screenshot(&conn, window, width, height);
+        changed(&before, &after) > 0.3
+    });
+    let orbited = Path::new(env!("CARGO_TARGET_TMPDIR")).join("viewer-orbited.png");
+    save_png(&orbited, &after, width, height);
+    assert!(
+        turned,
+        "a drag did not turn the picture: {:.0}% of pixels changed (after: {})",
+        100.0 * changed(&before, &after),
+        orbited.display()
+    );
+    // The title reads the mode, the sample rate and the oldest pixel's age; M changes mode.
+    assert!(
+        within(3, || title(&conn, window)
+            .contains("samples/s — oldest pixel")),
+        "the title has no readout: {}",
+        title(&conn, window)
+    );
+    assert!(title(&conn, window).contains("frameless"));
+    // Focus goes to the window, as a window manager gives it on a click (Xvfb has none).
+    conn.set_input_focus(xproto::InputFocus::PARENT, window, x11rb::CURRENT_TIME)
+        .unwrap();
+    conn.flush().unwrap();
+    std::thread::sleep(Duration::from_millis(100));
+    person.tap(u32::from(b'm'));
+    assert!(
+        within(3, || title(&conn, window).contains("adaptive")),
+        "M did not switch frameless to adaptive: {}",
+        title(&conn, window)
+    );
 
     // A close request, as a window manager sends it, ends the process cleanly.
     let atom = |name: &[u8]| conn.intern_atom(false, name).unwrap().reply().unwrap().atom;

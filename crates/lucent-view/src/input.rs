@@ -44,7 +44,11 @@ impl Input {
     /// Handles one window event.
     pub fn event(&mut self, event: &WindowEvent, shared: &Shared, mode: DisplayMode) -> Outcome {
         match event {
-            WindowEvent::KeyboardInput { event, .. } => {
+            WindowEvent::KeyboardInput {
+                event,
+                is_synthetic,
+                ..
+            } => {
                 let PhysicalKey::Code(code) = event.physical_key else {
                     return Outcome::default();
                 };
@@ -52,7 +56,9 @@ impl Input {
                     self.held.remove(&code);
                     return Outcome::default();
                 }
-                if event.repeat {
+                // A key already down when the window gets the focus arrives as a synthetic
+                // press: it was not pressed for this window.
+                if event.repeat || *is_synthetic {
                     return Outcome::default();
                 }
                 return self.press(code, shared, mode);
@@ -105,8 +111,7 @@ impl Input {
                 shared.wake.notify_all();
             }
             KeyCode::KeyM => {
-                let all = DisplayMode::ALL;
-                let next = all[(all.iter().position(|&m| m == mode).unwrap_or(0) + 1) % all.len()];
+                let next = mode.next();
                 let (w, h) = {
                     let s = shared.screen();
                     (s.width, s.height)

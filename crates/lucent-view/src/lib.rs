@@ -19,11 +19,8 @@ pub mod readout;
 mod stand_in;
 pub mod workers;
 
-// TEMPORARY: the stand-in until `lucent::schedule::frameless` lands.
-use stand_in as schedule;
-
+pub use lucent::schedule::frameless::DisplayMode;
 pub use pose::Pose;
-pub use schedule::DisplayMode;
 
 use lucent::integrator::Integrator;
 use lucent::scene::Scene;

@@ -1,7 +1,7 @@
 //! The title bar's readout: the mode, samples per second, the age of the oldest pixel on
 //! screen, and whether the viewer is paused.
 
-use crate::schedule::DisplayMode;
+use crate::DisplayMode;
 use std::time::{Duration, Instant};
 
 /// How often the readout changes: often enough to follow, seldom enough to read.

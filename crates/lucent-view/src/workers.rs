@@ -7,10 +7,11 @@
 
 use crate::clock::Clock;
 use crate::pose::Pose;
-use crate::schedule::{DisplayMode, Presenter, Sample, SampleRequest, Snapshots, trace_sample};
+use crate::stand_in::Snapshots;
 use lucent::camera::Camera;
 use lucent::integrator::{Integrator, RayStats};
 use lucent::scene::Scene;
+use lucent::schedule::frameless::{DisplayMode, Presenter, Sample, SampleRequest, trace_sample};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
@@ -186,6 +187,12 @@ fn work(shared: &Shared, worker: u64) {
                 .plan(BATCH, now, now + batch_time, &mut requests);
             (s.generation, s.width, s.height)
         };
+        if requests.is_empty() {
+            // Double buffering has handed out its whole frame: the frame in flight finishes
+            // on other threads first.
+            std::thread::sleep(std::time::Duration::from_micros(200));
+            continue;
+        }
         let user_camera = user.and_then(|p| p.camera(width, height));
         // The scene's camera, rebuilt only when the snapshot changes.
         let mut cached: Option<(Arc<Scene>, Option<Camera>)> = None;
