@@ -270,6 +270,7 @@ pub struct ViewArgs {
 
 impl ViewArgs {
     /// The scene settings this command overrides, as `render` takes them.
+    #[cfg_attr(not(feature = "viewer"), allow(dead_code))] // no scene is loaded without a viewer
     pub fn overrides(&self) -> Overrides {
         Overrides {
             integrator: self.integrator,

@@ -24,6 +24,7 @@ pub struct Job {
     pub load_time: std::time::Duration,
     /// The camera as the file gives it (or the one framing a scene without one): the viewer
     /// rebuilds it at the window's size.
+    #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
     pub camera: lucent_scene::desc::CameraDesc,
 }
 

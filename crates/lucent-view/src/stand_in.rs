@@ -14,6 +14,11 @@ impl Snapshots {
         Self(scene)
     }
 
+    /// The instant that samples at `t` are traced at (every instant is the same here).
+    pub fn instant(&self, _t: f64) -> f64 {
+        0.0
+    }
+
     /// The scene at `t`.
     pub fn at(&self, _t: f64) -> Arc<Scene> {
         Arc::clone(&self.0)

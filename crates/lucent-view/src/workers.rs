@@ -194,19 +194,22 @@ fn work(shared: &Shared, worker: u64) {
             continue;
         }
         let user_camera = user.and_then(|p| p.camera(width, height));
-        // The scene's camera, rebuilt only when the snapshot changes.
-        let mut cached: Option<(Arc<Scene>, Option<Camera>)> = None;
+        // The snapshot and its camera, looked up again only when a request's instant moves to
+        // another snapshot: a lookup per sample would share the snapshot's reference count
+        // between the threads on every sample.
+        let mut cached: Option<(f64, Arc<Scene>, Option<Camera>)> = None;
         samples.clear();
         for r in &requests {
-            let scene = shared.snapshots.at(r.time);
-            if !cached.as_ref().is_some_and(|(s, _)| Arc::ptr_eq(s, &scene)) {
+            let instant = shared.snapshots.instant(r.time);
+            if cached.as_ref().is_none_or(|(t, _, _)| *t != instant) {
+                let scene = shared.snapshots.at(r.time);
                 let camera = match user_camera {
                     Some(c) => Some(c),
                     None => shared.scene_pose_in(&scene).camera(width, height),
                 };
-                cached = Some((scene, camera));
+                cached = Some((instant, scene, camera));
             }
-            let Some((scene, Some(camera))) = &cached else {
+            let Some((_, scene, Some(camera))) = &cached else {
                 continue;
             };
             let color = trace_sample(
