@@ -20,6 +20,7 @@ pub mod accelerator;
 pub mod bounding_volumes;
 pub mod brute_force;
 pub mod bvh;
+pub mod frustum;
 mod mailbox;
 pub mod octree;
 pub mod ray;
@@ -31,6 +32,7 @@ pub use accelerator::{AccelInfo, AccelKind, Accelerator, AnyAccelerator, Travers
 pub use bounding_volumes::BoundingVolumes;
 pub use brute_force::BruteForce;
 pub use bvh::Bvh;
+pub use frustum::Frustum;
 pub use octree::Octree;
 pub use ray::Ray;
-pub use wide_bvh::{WideBvh, WideTriangleBvh};
+pub use wide_bvh::{Cut, WideBvh, WideTriangleBvh};

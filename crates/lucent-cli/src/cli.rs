@@ -160,6 +160,15 @@ pub struct Overrides {
     pub time_limit: Option<f64>,
 }
 
+/// A switch on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OnOff {
+    /// Enabled.
+    On,
+    /// Disabled.
+    Off,
+}
+
 /// How filters weigh samples, on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum FilterSamplingArg {
@@ -205,6 +214,10 @@ pub struct RenderArgs {
     /// Render threads; 0 uses every core.
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
     pub threads: u16,
+    /// Trace each tile's camera rays as one beam (pinhole cameras): `on` (the default, faster)
+    /// or `off` (every ray from the root of the accelerators). The image is the same.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub beam: OnOff,
     /// Render only shard I of N (tiles I, I+N, I+2N, …), as `I/N`; `auto/N` takes I from
     /// $SLURM_ARRAY_TASK_ID or $JOB_COMPLETION_INDEX.
     #[arg(long, value_name = "I/N")]

@@ -2,7 +2,7 @@
 //! lens that focuses at one distance and blurs what is nearer or farther (depth of field).
 
 use glam::Vec3;
-use lucent_accel::Ray;
+use lucent_accel::{Frustum, Ray};
 use thiserror::Error;
 
 /// Why a camera cannot be built.
@@ -151,10 +151,31 @@ impl Camera {
 
     /// The ray from the eye through image point `(x, y)` (see the type's docs), unit direction.
     pub fn ray(&self, x: f32, y: f32) -> Ray {
+        Ray::new(self.eye, self.direction(x, y).normalize())
+    }
+
+    /// The direction through image point `(x, y)`, not normalised: linear in `(x, y)`, so the
+    /// rays through a rectangle of the image lie in the cone of its corners' directions.
+    fn direction(&self, x: f32, y: f32) -> Vec3 {
         let ndc_x = 2.0 * x / self.width as f32 - 1.0;
         let ndc_y = 1.0 - 2.0 * y / self.height as f32;
-        let dir = (self.forward + ndc_x * self.right + ndc_y * self.up).normalize();
-        Ray::new(self.eye, dir)
+        self.forward + ndc_x * self.right + ndc_y * self.up
+    }
+
+    /// True for a pinhole: every ray starts at the eye.
+    pub fn is_pinhole(&self) -> bool {
+        self.lens_radius == 0.0
+    }
+
+    /// The beam of the pinhole's rays through the image rectangle `[x0, x1] × [y0, y1]` (pixel
+    /// coordinates, which may reach outside the image): `None` for a thin lens, whose rays do
+    /// not share an origin, or for a rectangle too thin to span a cone.
+    pub fn frustum(&self, (x0, y0): (f32, f32), (x1, y1): (f32, f32)) -> Option<Frustum> {
+        if !self.is_pinhole() {
+            return None;
+        }
+        let corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)].map(|(x, y)| self.direction(x, y));
+        Frustum::new(self.eye, corners)
     }
 }
 

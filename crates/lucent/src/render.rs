@@ -19,7 +19,7 @@ use crate::film::splat::{Commits, FilterSampling, TileSplats};
 use crate::integrator::{Integrator, RayStats};
 use crate::sampling::sobol::Sampler;
 use crate::sampling::{pixel_offset, uniform};
-use crate::scene::Scene;
+use crate::scene::{Beam, Scene};
 use crate::schedule::adaptive::{Adaptive, Band, BandCorners};
 use crate::schedule::{Tile, tiles};
 use lucent_accel::Ray;
@@ -79,6 +79,10 @@ pub struct RenderSettings {
     pub filter_sampling: FilterSampling,
     /// Stop after this long even if not every pixel has `spp` samples (uniform sampling).
     pub time_limit: Option<Duration>,
+    /// Trace each tile's camera rays as one beam ([`crate::scene::Beam`]) when the camera is a
+    /// pinhole: the same image, faster. Adaptive sampling, the photon mapper and the debug
+    /// views trace per pixel whatever this says.
+    pub beam: bool,
 }
 
 /// How a pixel's value is sampled.
@@ -105,6 +109,7 @@ impl Default for RenderSettings {
             filter: Filter::default(),
             filter_sampling: FilterSampling::default(),
             time_limit: None,
+            beam: true,
         }
     }
 }
@@ -515,6 +520,7 @@ fn render_tile(
     let mut stats = RayStats::default();
     let mut taken = 0;
     let width = u64::from(scene.camera.width());
+    let beam = tile_beam(scene, settings, tile);
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -530,9 +536,13 @@ fn render_tile(
                 let (ray, weight) =
                     camera_sample(scene, settings, filter, (x, y), pixel, s, &mut sampler);
                 stats.camera += 1;
-                let value = settings
-                    .integrator
-                    .radiance(scene, &ray, &mut sampler, &mut stats);
+                let value = settings.integrator.radiance_in(
+                    scene,
+                    beam.as_ref(),
+                    &ray,
+                    &mut sampler,
+                    &mut stats,
+                );
                 let finite = value.is_finite() && weight.is_finite();
                 stats.nonfinite += u64::from(!finite);
                 part.add_sample(px, py, finite.then_some(value), weight);
@@ -559,6 +569,7 @@ fn render_tile_splats(
     let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
     let mut splats = TileSplats::new(tile.x0, tile.y0, w, h, &settings.filter);
     let width = u64::from(scene.camera.width());
+    let beam = tile_beam(scene, settings, tile);
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -577,9 +588,13 @@ fn render_tile_splats(
                 let (sx, sy) = (x as f32 + u.x, y as f32 + u.y);
                 let ray = scene.camera.ray_through_lens(sx, sy, lens);
                 stats.camera += 1;
-                let value = settings
-                    .integrator
-                    .radiance(scene, &ray, &mut sampler, &mut stats);
+                let value = settings.integrator.radiance_in(
+                    scene,
+                    beam.as_ref(),
+                    &ray,
+                    &mut sampler,
+                    &mut stats,
+                );
                 let finite = value.is_finite();
                 stats.nonfinite += u64::from(!finite);
                 splats.add(&settings.filter, (x, y), (sx, sy), finite.then_some(value));
@@ -588,6 +603,23 @@ fn render_tile_splats(
         }
     }
     (stats, taken, Some(splats))
+}
+
+/// The beam of `tile`'s camera rays, when beams are on, the camera is a pinhole and the
+/// integrator is not a debug view (some show the traversal's counts, which a beam changes).
+///
+/// A sample lands in `[x, x + 1)` of its pixel, or within the filter's radius of the pixel's
+/// centre when the filter is importance sampled: the tile widened by the radius (at least half
+/// a pixel) holds every camera ray of the tile.
+fn tile_beam(scene: &Scene, settings: &RenderSettings, tile: &Tile) -> Option<Beam> {
+    if !settings.beam || matches!(settings.integrator, Integrator::Debug(_)) {
+        return None;
+    }
+    let m = settings.filter.radius().max(0.5);
+    let (x0, y0) = (tile.x0 as f32 - m, tile.y0 as f32 - m);
+    let (x1, y1) = (tile.x1 as f32 + m, tile.y1 as f32 + m);
+    let frustum = scene.camera.frustum((x0, y0), (x1, y1))?;
+    Some(scene.beam(&frustum))
 }
 
 /// Where in its pixel sample `s` of pixel `pixel` lands (uniform in `[0, 1)²`) and which point

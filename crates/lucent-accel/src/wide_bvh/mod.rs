@@ -7,11 +7,13 @@
 //! for triangles: they hold packs of eight triangles laid out for a SIMD watertight test.
 
 mod collapse;
+mod cut;
 mod lanes;
 mod simd;
 mod traverse;
 mod triangles;
 
+pub use cut::Cut;
 pub use lanes::{LANES, Lanes};
 pub use triangles::{PackedHit, WideTriangleBvh};
 
@@ -23,6 +25,9 @@ pub const WIDTH: usize = LANES;
 
 /// `count` of an unused child slot.
 pub(crate) const EMPTY: u32 = u32::MAX;
+
+/// `count` of a child that is one of a beam's virtual nodes ([`Cut`]), not a node of the tree.
+pub(crate) const VIRTUAL: u32 = u32::MAX - 1;
 
 /// A node: eight child boxes in structure-of-arrays form, and what each child is. 256 bytes.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,10 +1,11 @@
 //! Traversal of the wide BVH: eight child boxes per SIMD test, nearest child first.
 
+use super::Cut;
 use super::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
 use super::simd::Avx;
 use super::simd::{self, Simd, Sse};
-use super::{EMPTY, NodeW, WIDTH, WideBvh};
+use super::{EMPTY, NodeW, VIRTUAL, WIDTH, WideBvh};
 use crate::aabb::{CULL_SLACK, ROUNDING_SLACK};
 use crate::{Accelerator, Ray, TraversalStats};
 use arrayvec::ArrayVec;
@@ -147,6 +148,10 @@ impl<F: FnMut(u32, u32, &mut TraversalStats) -> bool> AnyLeaf for Visit<F> {
 impl WideBvh {
     /// Closest-hit traversal; `visit(first, count, t_max, stats)` tests a leaf's primitives,
     /// lowers `t_max` on a hit and returns whether it found one.
+    ///
+    /// `entry` is where the walk starts: empty for the root, or the virtual nodes of a beam's
+    /// [`Cut`](super::Cut) (node 0 first), whose children are the tree's subtrees and leaves
+    /// or further virtual nodes (count [`VIRTUAL`]).
     #[inline(always)]
     pub(crate) fn closest_walk<S: Simd, L: ClosestLeaf>(
         &self,
@@ -155,6 +160,7 @@ impl WideBvh {
         mut t_max: f32,
         stats: &mut TraversalStats,
         leaf: &mut L,
+        entry: &[NodeW],
     ) -> bool {
         if let Some((first, count)) = self.root_leaf {
             return self.bounds.hit(ray, t_max).is_some()
@@ -165,13 +171,17 @@ impl WideBvh {
         }
         let pre = RayPre::new(ray);
         let mut stack: ArrayVec<Entry, STACK_SIZE> = ArrayVec::new();
-        let (mut child, mut count) = (0u32, 0u32);
+        let (mut child, mut count) = (0u32, if entry.is_empty() { 0 } else { VIRTUAL });
         let mut hit = false;
         let mut visited = 0u64;
         loop {
-            if count == 0 {
+            if count == 0 || count == VIRTUAL {
                 visited += 1;
-                let node = &self.nodes[child as usize];
+                let node = if count == 0 {
+                    &self.nodes[child as usize]
+                } else {
+                    &entry[child as usize]
+                };
                 let (mask, t) = pre.enter(s, node, t_max);
                 if mask != 0 {
                     let first = mask.trailing_zeros() as usize;
@@ -278,6 +288,7 @@ impl WideBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         mut leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32, &mut f32) -> bool,
@@ -292,7 +303,7 @@ impl WideBvh {
                 hit
             },
         );
-        self.closest_walk(s, ray, t_max, stats, &mut visit)
+        self.closest_walk(s, ray, t_max, stats, &mut visit, entry)
     }
 
     #[inline(always)]
@@ -327,11 +338,37 @@ impl WideBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
-        self.closest_generic(s, ray, t_max, stats, leaf)
+        self.closest_generic(s, ray, t_max, stats, leaf, entry)
+    }
+
+    /// [`Accelerator::closest_hit`] for the rays of a beam, starting from its cut (see
+    /// [`WideBvh::cut`]): the same hits, for every ray inside the beam the cut was made for.
+    pub fn closest_hit_in<F>(
+        &self,
+        cut: &Cut,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32, &mut f32) -> bool,
+    {
+        if cut.misses {
+            return false;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = Avx::detect() {
+            // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.closest_avx2(avx, ray, t_max, stats, leaf, &cut.nodes) };
+        }
+        self.closest_generic(Sse, ray, t_max, stats, leaf, &cut.nodes)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -355,10 +392,11 @@ impl WideBvh {
     /// Starts fetching child `i` of `node`, which will be visited later.
     #[inline(always)]
     fn prefetch_child<L: ClosestLeaf>(&self, node: &NodeW, i: usize, leaf: &L) {
-        if node.count[i] == 0 {
-            simd::prefetch(&self.nodes[node.child[i] as usize]);
-        } else {
-            leaf.prefetch(node.child[i]);
+        match node.count[i] {
+            0 => simd::prefetch(&self.nodes[node.child[i] as usize]),
+            // A beam's virtual nodes are few and were just built: in cache already.
+            VIRTUAL => {}
+            _ => leaf.prefetch(node.child[i]),
         }
     }
 }
@@ -384,9 +422,9 @@ impl Accelerator for WideBvh {
         if let Some(avx) = Avx::detect() {
             // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.closest_avx2(avx, ray, t_max, stats, leaf) };
+            return unsafe { self.closest_avx2(avx, ray, t_max, stats, leaf, &[]) };
         }
-        self.closest_generic(Sse, ray, t_max, stats, leaf)
+        self.closest_generic(Sse, ray, t_max, stats, leaf, &[])
     }
 
     fn any_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool

@@ -8,9 +8,9 @@ use super::lanes::{LANES, Lanes};
 use super::simd::Avx;
 use super::simd::{self, Simd, Sse};
 use super::traverse::{AnyLeaf, ClosestLeaf};
-use super::{EMPTY, WIDTH, WideBvh, build_options};
+use super::{Cut, EMPTY, NodeW, WIDTH, WideBvh, build_options};
 use crate::triangle::{Shear, TriangleHit, edge_functions_f64};
-use crate::{Aabb, Bvh, Ray, TraversalStats};
+use crate::{Aabb, Bvh, Frustum, Ray, TraversalStats};
 use glam::Vec3;
 
 /// Eight triangles: `v[vertex][axis]` lanes, and the triangles' indices (`u32::MAX` for an
@@ -113,9 +113,36 @@ impl WideTriangleBvh {
         if let Some(avx) = Avx::detect() {
             // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.closest_avx2(avx, ray, t_max, skip, stats) };
+            return unsafe { self.closest_avx2(avx, ray, t_max, skip, stats, &[]) };
         }
-        self.closest(Sse, ray, t_max, skip, stats)
+        self.closest(Sse, ray, t_max, skip, stats, &[])
+    }
+
+    /// Where the rays of beam `frustum` start in this tree (see [`WideBvh::cut`]).
+    pub fn cut(&self, frustum: &Frustum) -> Cut {
+        self.bvh.cut(frustum)
+    }
+
+    /// [`WideTriangleBvh::closest_hit`] for a ray of the beam that `cut` was made for: the
+    /// same hit, from fewer nodes.
+    pub fn closest_hit_in(
+        &self,
+        cut: &Cut,
+        ray: &Ray,
+        t_max: f32,
+        skip: Option<u32>,
+        stats: &mut TraversalStats,
+    ) -> Option<PackedHit> {
+        if cut.misses {
+            return None;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = Avx::detect() {
+            // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.closest_avx2(avx, ray, t_max, skip, stats, &cut.nodes) };
+        }
+        self.closest(Sse, ray, t_max, skip, stats, &cut.nodes)
     }
 
     /// Calls `leaf(triangle)` for triangles hit in `(0, t_max)` until it returns `true`;
@@ -144,7 +171,7 @@ impl WideTriangleBvh {
         skip: Option<u32>,
         stats: &mut TraversalStats,
     ) -> Option<PackedHit> {
-        self.closest(Sse, ray, t_max, skip, stats)
+        self.closest(Sse, ray, t_max, skip, stats, &[])
     }
 
     /// [`WideTriangleBvh::any_hit`] on the baseline instruction set (see `closest_hit_baseline`).
@@ -168,8 +195,9 @@ impl WideTriangleBvh {
         t_max: f32,
         skip: Option<u32>,
         stats: &mut TraversalStats,
+        entry: &[NodeW],
     ) -> Option<PackedHit> {
-        self.closest(s, ray, t_max, skip, stats)
+        self.closest(s, ray, t_max, skip, stats, entry)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -196,6 +224,7 @@ impl WideTriangleBvh {
         t_max: f32,
         skip: Option<u32>,
         stats: &mut TraversalStats,
+        entry: &[NodeW],
     ) -> Option<PackedHit> {
         let mut leaves = NearestInPacks {
             s,
@@ -204,7 +233,8 @@ impl WideTriangleBvh {
             skip,
             best: None,
         };
-        self.bvh.closest_walk(s, ray, t_max, stats, &mut leaves);
+        self.bvh
+            .closest_walk(s, ray, t_max, stats, &mut leaves, entry);
         leaves.best
     }
 

@@ -7,6 +7,7 @@
 //! every primitive for every ray, so they trace a subset of each set, sized to about 2^30
 //! primitive tests (at least 256 rays), and their rate is measured on that subset.
 
+mod beam;
 #[cfg(any(feature = "bench-embree", feature = "bench-obvhs"))]
 mod peers;
 mod rays;
@@ -50,6 +51,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
     };
     let threads: Vec<usize> = args.threads.iter().map(|&t| usize::from(t)).collect();
     let mut rows = Vec::new();
+    let mut beam_rows = Vec::new();
     for path in &scenes {
         eprintln!("{}:", path.display());
         let name = path.file_name().map_or_else(
@@ -92,6 +94,25 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
             }
             eprintln!("  {}", row.summary());
             rows.push(row);
+            if kind == AccelKind::Wide {
+                for tile in beam::TILES {
+                    for &t in &threads {
+                        let (per_pixel, beam) = beam::measure(&scene, tile, t)?;
+                        eprintln!(
+                            "  beam {tile}×{tile}/{t}t: per-pixel {:.3}, beam {:.3} Mrays/s",
+                            per_pixel.mrays(),
+                            beam.mrays()
+                        );
+                        beam_rows.push(beam::BeamRow {
+                            scene: name.clone(),
+                            tile,
+                            threads: t,
+                            per_pixel,
+                            beam,
+                        });
+                    }
+                }
+            }
             // Peers take a triangle soup: only scenes of meshes alone.
             if peer_job.is_none()
                 && counts.spheres == 0
@@ -107,6 +128,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
         rows.extend(run_peers(&name, peer_job, &threads)?);
     }
     println!("{}", report::table(&rows, &threads));
+    if !beam_rows.is_empty() {
+        println!("{}", beam::table(&beam_rows));
+    }
     if let Some(csv) = &args.csv {
         std::fs::write(csv, report::csv(&rows))
             .with_context(|| format!("cannot write {}", csv.display()))?;

@@ -21,7 +21,7 @@ pub use whitted::Whitted;
 
 use crate::Rgb;
 use crate::sampling::sobol::Sampler;
-use crate::scene::Scene;
+use crate::scene::{Beam, Scene};
 use lucent_accel::{Ray, TraversalStats};
 
 /// Rays traced, by kind, and the accelerator work they cost.
@@ -110,18 +110,33 @@ impl Integrator {
         sampler: &mut Sampler,
         stats: &mut RayStats,
     ) -> Rgb {
+        self.radiance_in(scene, None, ray, sampler, stats)
+    }
+
+    /// [`Integrator::radiance`] for a camera ray of `beam` (from its origin, inside it): the
+    /// same value, its first hit found through the beam ([`Scene::intersect_in`]). The debug
+    /// views trace from the root, since some of them show the traversal's own counts.
+    #[inline]
+    pub fn radiance_in(
+        &self,
+        scene: &Scene,
+        beam: Option<&Beam>,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        stats: &mut RayStats,
+    ) -> Rgb {
         match self {
-            Integrator::Raycast => raycast::radiance(scene, ray, stats),
-            Integrator::Whitted(w) => w.radiance(scene, ray, stats),
+            Integrator::Raycast => raycast::radiance(scene, beam, ray, stats),
+            Integrator::Whitted(w) => w.radiance_in(scene, beam, ray, stats),
             Integrator::Debug(view) => debug::radiance(*view, scene, ray, stats),
-            Integrator::Path(p) => p.radiance(scene, ray, sampler, stats),
+            Integrator::Path(p) => p.radiance_in(scene, beam, ray, sampler, stats),
             // One ray alone cannot be photon mapped (the estimate needs every pixel's visible
             // point: the renderer runs `sppm::render_sppm`); it is path traced.
             Integrator::Sppm(s) => PathTracer {
                 max_depth: s.max_depth,
                 ..PathTracer::default()
             }
-            .radiance(scene, ray, sampler, stats),
+            .radiance_in(scene, beam, ray, sampler, stats),
         }
     }
 }

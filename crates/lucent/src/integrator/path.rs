@@ -33,7 +33,7 @@ use super::vertex::Vertex;
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::sampling::sobol::Sampler;
-use crate::scene::Scene;
+use crate::scene::{Beam, Scene};
 use glam::Vec3;
 use lucent_accel::Ray;
 
@@ -78,6 +78,19 @@ impl PathTracer {
         sampler: &mut Sampler,
         stats: &mut RayStats,
     ) -> Rgb {
+        self.radiance_in(scene, None, camera_ray, sampler, stats)
+    }
+
+    /// [`PathTracer::radiance`] for a camera ray of `beam`, if any: its first hit is found
+    /// through the beam ([`Scene::intersect_in`]), the same hit.
+    pub fn radiance_in(
+        &self,
+        scene: &Scene,
+        beam: Option<&Beam>,
+        camera_ray: &Ray,
+        sampler: &mut Sampler,
+        stats: &mut RayStats,
+    ) -> Rgb {
         let mut l = Rgb::BLACK;
         let mut beta = Rgb::WHITE;
         let mut ray = *camera_ray;
@@ -92,7 +105,11 @@ impl PathTracer {
             let u_bsdf = (sampler.next_1d(), sampler.next_2d());
             let u_rr = sampler.next_1d();
 
-            let Some(hit) = scene.intersect_from(&ray, from, &mut stats.traversal) else {
+            let hit = match beam {
+                Some(beam) if depth == 0 => scene.intersect_in(beam, &ray, &mut stats.traversal),
+                _ => scene.intersect_from(&ray, from, &mut stats.traversal),
+            };
+            let Some(hit) = hit else {
                 let le = scene.background_along(ray.dir);
                 if !le.is_black() {
                     let w = last.map_or(1.0, |(_, pdf)| {

@@ -29,7 +29,7 @@ use super::RayStats;
 use super::record::{Cut, NoRecord, RayKind, Recorder};
 use crate::Rgb;
 use crate::optics::{reflect, refract};
-use crate::scene::Scene;
+use crate::scene::{Beam, Scene};
 use crate::shape::SurfaceHit;
 use crate::spawn::{Leaving, spawn_ray};
 use glam::Vec3;
@@ -74,6 +74,8 @@ struct Path {
 /// recorder of the ray tree.
 struct Trace<'a, R> {
     scene: &'a Scene,
+    /// The beam the camera ray belongs to, if any.
+    beam: Option<&'a Beam>,
     budget: u32,
     stats: &'a mut RayStats,
     record: &'a mut R,
@@ -82,7 +84,19 @@ struct Trace<'a, R> {
 impl Whitted {
     /// Radiance along a camera ray.
     pub fn radiance(&self, scene: &Scene, ray: &Ray, stats: &mut RayStats) -> Rgb {
-        self.radiance_recorded(scene, ray, stats, &mut NoRecord)
+        self.radiance_in(scene, None, ray, stats)
+    }
+
+    /// [`Whitted::radiance`] for a camera ray of `beam`, if any: the camera ray's hit is found
+    /// through the beam ([`Scene::intersect_in`]), the same hit.
+    pub fn radiance_in(
+        &self,
+        scene: &Scene,
+        beam: Option<&Beam>,
+        ray: &Ray,
+        stats: &mut RayStats,
+    ) -> Rgb {
+        self.radiance_with(scene, beam, ray, stats, &mut NoRecord)
     }
 
     /// [`Whitted::radiance`], telling `record` every ray traced and every term added (for
@@ -94,8 +108,20 @@ impl Whitted {
         stats: &mut RayStats,
         record: &mut R,
     ) -> Rgb {
+        self.radiance_with(scene, None, ray, stats, record)
+    }
+
+    fn radiance_with<R: Recorder>(
+        &self,
+        scene: &Scene,
+        beam: Option<&Beam>,
+        ray: &Ray,
+        stats: &mut RayStats,
+        record: &mut R,
+    ) -> Rgb {
         let mut t = Trace {
             scene,
+            beam,
             budget: MAX_SECONDARY_RAYS,
             stats,
             record,
@@ -116,7 +142,12 @@ impl Whitted {
         path: &Path,
     ) -> Rgb {
         t.record.begin(kind, ray, path.weight);
-        let hit = t.scene.intersect_from(ray, from, &mut t.stats.traversal);
+        let hit = match t.beam {
+            Some(beam) if kind == RayKind::Camera => {
+                t.scene.intersect_in(beam, ray, &mut t.stats.traversal)
+            }
+            _ => t.scene.intersect_from(ray, from, &mut t.stats.traversal),
+        };
         t.record.hit(hit.as_ref());
         let color = match hit {
             Some(hit) => self.shade(t, ray, &hit, path),

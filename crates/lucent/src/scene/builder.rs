@@ -402,6 +402,7 @@ impl SceneBuilder {
             merged,
             objects: self.objects,
             primitives,
+            primitive_bounds: boxes,
             accel,
             bounds,
             triangle_test: self.triangle_test,

@@ -11,9 +11,11 @@
 //! before spheres, spheres before meshes, lower triangle index first), whatever the
 //! accelerator, so that every accelerator renders the same image.
 
+mod beam;
 mod builder;
 mod query;
 
+pub use beam::Beam;
 pub use builder::{SceneBuilder, SceneError};
 
 use crate::Rgb;
@@ -133,6 +135,8 @@ pub struct Scene {
     /// Top-level primitives: spheres first, then the instances not merged, then the merged
     /// mesh.
     primitives: Vec<Primitive>,
+    /// The world-space box of each top-level primitive (what `accel` was built from).
+    primitive_bounds: Vec<Aabb>,
     accel: AnyAccelerator,
     bounds: Aabb,
     triangle_test: TriangleTest,

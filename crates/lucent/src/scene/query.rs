@@ -1,12 +1,14 @@
 //! Ray queries: the nearest surface, and what blocks a shadow ray.
 
+use super::Beam;
 use super::{MeshAccel, Scene};
 use crate::Rgb;
 use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, gamma, triangle};
 use crate::spawn::Leaving;
 use crate::texture::image::latlong_uv;
 use glam::{Vec2, Vec3};
-use lucent_accel::{Accelerator, Ray, TraversalStats};
+use lucent_accel::wide_bvh::PackedHit;
+use lucent_accel::{Accelerator, Cut, Ray, TraversalStats, WideTriangleBvh};
 
 /// The nearest hit found so far, before its surface is worked out.
 #[derive(Clone, Copy)]
@@ -38,6 +40,30 @@ impl Nearest {
             self.candidate = Some(candidate);
         }
         better
+    }
+}
+
+/// What a search of one mesh's triangles updates: the running nearest hit and the counters,
+/// and where the mesh's traversal starts for a beam's ray (`None`: at its root).
+struct MeshSearch<'a, 'b> {
+    nearest: &'a mut Nearest,
+    stats: &'a mut TraversalStats,
+    cut: Option<&'b Cut>,
+}
+
+/// The packed tree's nearest hit, from the beam's cut when there is one.
+#[inline]
+fn closest_packed(
+    packed: &WideTriangleBvh,
+    cut: Option<&Cut>,
+    ray: &Ray,
+    t_max: f32,
+    skip: Option<u32>,
+    stats: &mut TraversalStats,
+) -> Option<PackedHit> {
+    match cut {
+        Some(cut) => packed.closest_hit_in(cut, ray, t_max, skip, stats),
+        None => packed.closest_hit(ray, t_max, skip, stats),
     }
 }
 
@@ -134,13 +160,37 @@ impl Scene {
         from: Option<Leaving>,
         stats: &mut TraversalStats,
     ) -> Option<SurfaceHit> {
+        self.nearest_surface(ray, from, None, stats)
+    }
+
+    /// [`Scene::intersect`] for a ray of `beam` (from the frustum's origin, inside it): the
+    /// same hit, bit for bit, tested against only what the beam can reach (see
+    /// [`Scene::beam`]).
+    pub fn intersect_in(
+        &self,
+        beam: &Beam,
+        ray: &Ray,
+        stats: &mut TraversalStats,
+    ) -> Option<SurfaceHit> {
+        self.nearest_surface(ray, None, Some(beam), stats)
+    }
+
+    fn nearest_surface(
+        &self,
+        ray: &Ray,
+        from: Option<Leaving>,
+        beam: Option<&Beam>,
+        stats: &mut TraversalStats,
+    ) -> Option<SurfaceHit> {
         let mut nearest = Nearest {
             t: f32::INFINITY,
             key: None,
             candidate: None,
         };
         for (i, (plane, _)) in self.planes.iter().enumerate() {
-            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32)) {
+            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32))
+                || beam.is_some_and(|b| !b.planes[i])
+            {
                 continue;
             }
             if let Some(t) = plane.intersect(ray, nearest.t) {
@@ -152,8 +202,8 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let t_max = nearest.t;
-        let leaf = |p: u32, t_max: &mut f32| {
+        let mut t_max = nearest.t;
+        let mut leaf = |p: u32, cut: Option<&Cut>, t_max: &mut f32| {
             let found = match self.primitives[p as usize] {
                 Primitive::Sphere(i) => {
                     let sphere = &self.spheres[i as usize].0;
@@ -164,10 +214,20 @@ impl Scene {
                 }
                 Primitive::Instance(k) => {
                     let skip = leaving_triangle(from, k);
-                    self.nearest_in_instance(k, ray, *t_max, skip, &mut nearest, &mut mesh_stats)
+                    let mut search = MeshSearch {
+                        nearest: &mut nearest,
+                        stats: &mut mesh_stats,
+                        cut,
+                    };
+                    self.nearest_in_instance(k, ray, *t_max, skip, &mut search)
                 }
                 Primitive::Merged => {
-                    self.nearest_in_merged(ray, *t_max, from, &mut nearest, &mut mesh_stats)
+                    let mut search = MeshSearch {
+                        nearest: &mut nearest,
+                        stats: &mut mesh_stats,
+                        cut,
+                    };
+                    self.nearest_in_merged(ray, *t_max, from, &mut search)
                 }
             };
             if found {
@@ -175,12 +235,24 @@ impl Scene {
             }
             found
         };
-        // One top-level primitive (a scene merged into one mesh) needs no top level.
-        if let [_] = self.primitives.as_slice() {
-            let mut leaf = leaf;
-            leaf(0, &mut { t_max });
-        } else {
-            self.accel.closest_hit(ray, t_max, stats, leaf);
+        match beam.and_then(|b| b.top.as_ref()) {
+            // The primitives the beam touches, in any order: the nearest hit and its tie rule
+            // do not depend on it. The box test is the one the accelerators make.
+            Some(touched) => {
+                for (p, cut) in touched {
+                    if self.primitive_bounds[*p as usize].hit(ray, t_max).is_some() {
+                        leaf(*p, cut.as_ref(), &mut t_max);
+                    }
+                }
+            }
+            // One top-level primitive (a scene merged into one mesh) needs no top level.
+            None if self.primitives.len() == 1 => {
+                leaf(0, None, &mut t_max);
+            }
+            None => {
+                self.accel
+                    .closest_hit(ray, t_max, stats, |p, t_max| leaf(p, None, t_max));
+            }
         }
         *stats += mesh_stats;
         nearest.candidate.map(|c| self.surface(ray, c))
@@ -200,9 +272,13 @@ impl Scene {
         ray: &Ray,
         t_max: f32,
         skip: Option<u32>,
-        nearest: &mut Nearest,
-        stats: &mut TraversalStats,
+        search: &mut MeshSearch,
     ) -> bool {
+        let MeshSearch {
+            nearest,
+            stats,
+            cut,
+        } = search;
         let instance = &self.instances[k as usize].0;
         let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
         let entry = &self.meshes[instance.mesh as usize];
@@ -227,12 +303,14 @@ impl Scene {
                     _ => false,
                 }
             }),
-            MeshAccel::Packed(packed) => match packed.closest_hit(&local, t_max, skip, stats) {
-                Some((tri, hit, v)) => {
-                    nearest.offer(hit.t, key(tri), Candidate::Triangle(k, tri, hit, v, false))
+            MeshAccel::Packed(packed) => {
+                match closest_packed(packed, *cut, &local, t_max, skip, stats) {
+                    Some((tri, hit, v)) => {
+                        nearest.offer(hit.t, key(tri), Candidate::Triangle(k, tri, hit, v, false))
+                    }
+                    None => false,
                 }
-                None => false,
-            },
+            }
             MeshAccel::Unused => false,
         }
     }
@@ -244,9 +322,13 @@ impl Scene {
         ray: &Ray,
         t_max: f32,
         from: Option<Leaving>,
-        nearest: &mut Nearest,
-        stats: &mut TraversalStats,
+        search: &mut MeshSearch,
     ) -> bool {
+        let MeshSearch {
+            nearest,
+            stats,
+            cut,
+        } = search;
         let Some(m) = &self.merged else { return false };
         let skip = merged_skip(m, from);
         let mut offer = |i: u32, hit: TriangleHit, v: [Vec3; 3]| {
@@ -268,10 +350,12 @@ impl Scene {
                     _ => false,
                 }
             }),
-            MeshAccel::Packed(packed) => match packed.closest_hit(ray, t_max, skip, stats) {
-                Some((i, hit, v)) => offer(i, hit, v),
-                None => false,
-            },
+            MeshAccel::Packed(packed) => {
+                match closest_packed(packed, *cut, ray, t_max, skip, stats) {
+                    Some((i, hit, v)) => offer(i, hit, v),
+                    None => false,
+                }
+            }
             MeshAccel::Unused => false,
         }
     }

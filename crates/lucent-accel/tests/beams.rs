@@ -1,0 +1,135 @@
+//! Beams: a ray of a beam traced from the beam's cut finds exactly the hit it finds from the
+//! root — random scenes, random pinhole cameras, random tiles, rays anywhere in the tile
+//! (its corners and edges included).
+
+use glam::{Vec2, Vec3};
+use lucent_accel::triangle::watertight;
+use lucent_accel::{Accelerator, Frustum, Ray, TraversalStats, WideBvh, WideTriangleBvh};
+use proptest::prelude::*;
+
+fn vec3(r: f32) -> impl Strategy<Value = Vec3> {
+    prop::array::uniform3(-r..r).prop_map(Vec3::from_array)
+}
+
+/// Small triangles scattered in a cube of side 8, so that the trees have several levels.
+fn soup(centres: &[Vec3], offsets: &[[Vec3; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for (i, c) in centres.iter().enumerate() {
+        let o = offsets[i % offsets.len()];
+        let base = positions.len() as u32;
+        positions.extend(o.map(|d| *c + d));
+        triangles.push([base, base + 1, base + 2]);
+    }
+    (positions, triangles)
+}
+
+/// A pinhole camera's basis: (forward, right, up), the latter two scaled to the half image.
+fn basis(eye: Vec3, target: Vec3, half: f32) -> Option<(Vec3, Vec3, Vec3)> {
+    let f = (target - eye).try_normalize()?;
+    let r = f.cross(Vec3::Y).try_normalize()?;
+    let u = r.cross(f);
+    Some((f, r * half, u * half))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn rays_from_the_cut_find_the_hits_rays_from_the_root_find(
+        centres in prop::collection::vec(vec3(4.0), 50..1200),
+        offsets in prop::collection::vec(prop::array::uniform3(vec3(0.4)), 1..8),
+        eye in vec3(9.0),
+        target in vec3(1.0),
+        half in 0.05f32..1.5,
+        tile in (-1.0f32..1.0, -1.0f32..1.0, 0.0f32..0.5, 0.0f32..0.5),
+        samples in prop::collection::vec((0.0f32..=1.0, 0.0f32..=1.0), 1..48),
+    ) {
+        let (positions, triangles) = soup(&centres, &offsets);
+        let Some((f, r, u)) = basis(eye, target, half) else { return Ok(()) };
+        let (x0, y0) = (tile.0, tile.1);
+        let (x1, y1) = (x0 + tile.2 + 1e-3, y0 + tile.3 + 1e-3);
+        let dir = |p: Vec2| (f + p.x * r + p.y * u).normalize();
+        let corners = [Vec2::new(x0, y0), Vec2::new(x1, y0), Vec2::new(x1, y1), Vec2::new(x0, y1)];
+        let Some(frustum) = Frustum::new(eye, corners.map(dir)) else { return Ok(()) };
+
+        let packed = WideTriangleBvh::new(&positions, &triangles);
+        let cut = packed.cut(&frustum);
+        let boxes: Vec<_> = triangles
+            .iter()
+            .map(|t| lucent_accel::Aabb::from_points(t.map(|i| positions[i as usize])))
+            .collect();
+        let generic = WideBvh::new(&boxes);
+        let generic_cut = generic.cut(&frustum);
+
+        let points = corners.into_iter().chain(
+            samples.iter().map(|&(a, b)| Vec2::new(x0 + a * (x1 - x0), y0 + b * (y1 - y0))),
+        );
+        for p in points {
+            let ray = Ray::new(eye, dir(p));
+            let mut stats = TraversalStats::default();
+            let key = |h: Option<lucent_accel::wide_bvh::PackedHit>| {
+                h.map(|(i, h, _)| (i, h.t.to_bits(), h.bary.map(f32::to_bits)))
+            };
+            let root = key(packed.closest_hit(&ray, f32::INFINITY, None, &mut stats));
+            let from_cut = key(packed.closest_hit_in(&cut, &ray, f32::INFINITY, None, &mut stats));
+            prop_assert_eq!(root, from_cut, "packed leaves, cut {:?}", cut.virtual_nodes());
+
+            // The generic leaf test, nearest by (t, index).
+            let nearest = |from_cut: bool| {
+                let mut best: Option<(f32, u32)> = None;
+                let leaf = |i: u32, t_max: &mut f32| {
+                    let v = triangles[i as usize].map(|k| positions[k as usize]);
+                    match watertight(&ray, v, t_max.next_up()) {
+                        Some(h) if best.is_none_or(|(bt, bi)| (h.t, i) < (bt, bi)) => {
+                            best = Some((h.t, i));
+                            *t_max = h.t;
+                            true
+                        }
+                        _ => false,
+                    }
+                };
+                let mut stats = TraversalStats::default();
+                if from_cut {
+                    generic.closest_hit_in(&generic_cut, &ray, f32::INFINITY, &mut stats, leaf);
+                } else {
+                    generic.closest_hit(&ray, f32::INFINITY, &mut stats, leaf);
+                }
+                best.map(|(t, i)| (t.to_bits(), i))
+            };
+            prop_assert_eq!(nearest(false), nearest(true), "generic leaves");
+        }
+    }
+}
+
+#[test]
+fn a_beam_beside_the_scene_misses_it_and_a_narrow_one_skips_levels() {
+    let centres: Vec<Vec3> = (0..4096)
+        .map(|i| Vec3::new((i % 16) as f32, ((i / 16) % 16) as f32, (i / 256) as f32) * 0.5)
+        .collect();
+    let (positions, triangles) = soup(&centres, &[[Vec3::ZERO, Vec3::X * 0.2, Vec3::Y * 0.2]]);
+    let bvh = WideTriangleBvh::new(&positions, &triangles);
+    let eye = Vec3::new(3.55, 3.55, -10.0);
+    let beam = |dx: f32, dy: f32, w: f32| {
+        let c = |x: f32, y: f32| Vec3::new(x, y, 1.0);
+        Frustum::new(
+            eye,
+            [c(dx, dy), c(dx + w, dy), c(dx + w, dy + w), c(dx, dy + w)],
+        )
+        .unwrap()
+    };
+    assert!(bvh.cut(&beam(2.0, 2.0, 0.01)).misses());
+    let narrow = bvh.cut(&beam(0.0, 0.0, 0.002));
+    assert!(!narrow.misses() && narrow.virtual_nodes() >= 1);
+    // Its rays visit fewer nodes from the cut than from the root, and hit the same triangle.
+    let ray = Ray::new(eye, Vec3::new(0.001, 0.001, 1.0));
+    let (mut from_root, mut from_cut) = (TraversalStats::default(), TraversalStats::default());
+    let a = bvh.closest_hit(&ray, f32::INFINITY, None, &mut from_root);
+    let b = bvh.closest_hit_in(&narrow, &ray, f32::INFINITY, None, &mut from_cut);
+    assert_eq!(a.map(|h| h.0), b.map(|h| h.0));
+    assert!(a.is_some());
+    assert!(
+        from_cut.nodes_visited < from_root.nodes_visited,
+        "{from_cut:?} vs {from_root:?}"
+    );
+}

@@ -1,0 +1,135 @@
+//! Beams against per-pixel tracing: the same camera rays (one per pixel centre of the scene's
+//! camera at 1024×1024), the same tiles traced whole by one thread in the same order; per pixel
+//! each ray starts at the accelerators' roots, with beams each tile's rays go through the
+//! tile's [`lucent::scene::Beam`] (the beams' making included). The hits are checked to be the
+//! same (count and distances). Each is run three times, alternately; the fastest run counts.
+
+use super::report::Measurement;
+use lucent::accel::TraversalStats;
+use lucent::scene::Scene;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Runs of each kind; the fastest counts.
+const REPEATS: usize = 3;
+
+/// Tile sides measured.
+pub const TILES: [u32; 2] = [8, 16];
+
+/// One scene on one thread count with one tile size: per pixel, then beams.
+pub struct BeamRow {
+    /// The scene's file name.
+    pub scene: String,
+    /// Side of the square tiles.
+    pub tile: u32,
+    /// Threads.
+    pub threads: usize,
+    /// Each ray from the roots.
+    pub per_pixel: Measurement,
+    /// Each tile as a beam.
+    pub beam: Measurement,
+}
+
+/// The camera rays of `scene` in tiles of `tile`, per pixel and as beams, on `threads`.
+pub fn measure(
+    scene: &Scene,
+    tile: u32,
+    threads: usize,
+) -> anyhow::Result<(Measurement, Measurement)> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    let tiles: Vec<(u32, u32)> = (0..h.div_ceil(tile))
+        .flat_map(|ty| (0..w.div_ceil(tile)).map(move |tx| (tx * tile, ty * tile)))
+        .collect();
+    let run = |beams: bool| {
+        let start = Instant::now();
+        let (hits, sum, stats) = pool.install(|| {
+            tiles
+                .par_iter()
+                .map(|&(x0, y0)| {
+                    let (x1, y1) = ((x0 + tile).min(w), (y0 + tile).min(h));
+                    let beam = beams
+                        .then(|| {
+                            let f = scene
+                                .camera
+                                .frustum((x0 as f32, y0 as f32), (x1 as f32, y1 as f32));
+                            f.map(|f| scene.beam(&f))
+                        })
+                        .flatten();
+                    let mut stats = TraversalStats::default();
+                    let (mut hits, mut sum) = (0u64, 0u64);
+                    for y in y0..y1 {
+                        for x in x0..x1 {
+                            let ray = scene.camera.ray(x as f32 + 0.5, y as f32 + 0.5);
+                            let hit = match &beam {
+                                Some(b) => scene.intersect_in(b, &ray, &mut stats),
+                                None => scene.intersect(&ray, &mut stats),
+                            };
+                            if let Some(hit) = hit {
+                                hits += 1;
+                                sum = sum.wrapping_add(u64::from(hit.t.to_bits()));
+                            }
+                        }
+                    }
+                    (hits, sum, stats)
+                })
+                .reduce(
+                    || (0, 0, TraversalStats::default()),
+                    |(h1, s1, mut t1), (h2, s2, t2)| {
+                        t1 += t2;
+                        (h1 + h2, s1.wrapping_add(s2), t1)
+                    },
+                )
+        });
+        let m = Measurement {
+            rays: u64::from(w) * u64::from(h),
+            seconds: start.elapsed().as_secs_f64(),
+            hits,
+            stats,
+        };
+        (m, sum)
+    };
+    // Alternated, the fastest of each kept: the machine may be shared, and both kinds should
+    // meet the same disturbances.
+    let fastest = |a: Option<Measurement>, b: Measurement| match a {
+        Some(a) if a.seconds <= b.seconds => a,
+        _ => b,
+    };
+    let (mut per_pixel, mut beam) = (None, None);
+    for _ in 0..REPEATS {
+        let (p, a) = run(false);
+        let (b, s) = run(true);
+        anyhow::ensure!(
+            a == s && p.hits == b.hits,
+            "beam tracing found other hits than per-pixel tracing"
+        );
+        per_pixel = Some(fastest(per_pixel, p));
+        beam = Some(fastest(beam, b));
+    }
+    Ok((per_pixel.expect("measured"), beam.expect("measured")))
+}
+
+/// The rows as a table: Mrays/s per pixel and with beams, their ratio, nodes per ray.
+pub fn table(rows: &[BeamRow]) -> String {
+    let mut out = String::from(
+        "\nBeam tracing of camera rays (same rays, same tiles):\n\
+         scene                       tile threads  per-pixel     beam  ratio  nodes/ray (pixel → beam)\n",
+    );
+    for r in rows {
+        let nodes = |m: &Measurement| m.stats.nodes_visited as f64 / m.rays.max(1) as f64;
+        out.push_str(&format!(
+            "{:<27} {:>4} {:>7} {:>10.3} {:>8.3} {:>5.2}×  {:>6.2} → {:.2}\n",
+            r.scene,
+            r.tile,
+            r.threads,
+            r.per_pixel.mrays(),
+            r.beam.mrays(),
+            r.beam.mrays() / r.per_pixel.mrays(),
+            nodes(&r.per_pixel),
+            nodes(&r.beam),
+        ));
+    }
+    out
+}
