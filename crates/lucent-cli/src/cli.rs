@@ -2,6 +2,7 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use lucent::accel::AccelKind;
+use lucent::schedule::frameless::DisplayMode;
 use std::path::PathBuf;
 
 /// lucent: a ray tracer for learning, teaching and using ray tracing.
@@ -33,6 +34,9 @@ pub enum Command {
     /// Measure a claim of the literature in a simulation (see `lucent study frameless --help`).
     #[command(subcommand)]
     Study(StudyCommand),
+    /// Open a window that shows the scene as it is traced (frameless, double-buffered or
+    /// adaptive), with a camera to move; needs the `viewer` feature (on by default).
+    View(ViewArgs),
 }
 
 /// `lucent study`'s studies.
@@ -303,6 +307,80 @@ pub struct RenderArgs {
     /// corners of an unsplit pixel; white: split to the depth limit).
     #[arg(long, value_name = "PNG")]
     pub density_map: Option<PathBuf>,
+}
+
+/// `lucent view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Scene file (as `render` takes); the built-in default scene when omitted.
+    pub scene: Option<PathBuf>,
+    /// How the screen is made from the samples: `frameless` (each sample shown at once),
+    /// `double-buffer` (whole frames) or `adaptive`.
+    #[arg(long, default_value = "frameless", value_parser = mode_parser())]
+    pub mode: DisplayMode,
+    /// Render threads; 0 uses every core.
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
+    pub threads: u16,
+    /// Window pixels per rendered pixel, a side: 2 traces a quarter of the window's pixels.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub scale: u32,
+    /// The window's starting size, as WIDTHxHEIGHT; default: the scene's image size.
+    #[arg(long, value_parser = size)]
+    pub size: Option<(u32, u32)>,
+    /// Redraws per second.
+    #[arg(long, default_value_t = 60.0, value_parser = refresh)]
+    pub refresh: f64,
+    /// Close by itself after this many seconds, printing the samples per second (for
+    /// measurements and tests).
+    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
+    pub exit_after: Option<f64>,
+    /// Integrator (overrides the scene file).
+    #[arg(long, value_enum)]
+    pub integrator: Option<IntegratorArg>,
+    /// Deepest reflection/refraction bounce (overrides the scene file).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=1000))]
+    pub max_depth: Option<u32>,
+    /// Seed of the sample order and the samples (overrides the scene file).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Acceleration structure (overrides the scene file).
+    #[arg(long)]
+    pub accel: Option<AccelKind>,
+    /// Refuse files named by the scene outside its folder.
+    #[arg(long)]
+    pub sandbox: bool,
+}
+
+impl ViewArgs {
+    /// The scene settings this command overrides, as `render` takes them.
+    #[cfg_attr(not(feature = "viewer"), allow(dead_code))] // no scene is loaded without a viewer
+    pub fn overrides(&self) -> Overrides {
+        Overrides {
+            integrator: self.integrator,
+            max_depth: self.max_depth,
+            seed: self.seed,
+            accel: self.accel,
+            sandbox: self.sandbox,
+            ..Overrides::default()
+        }
+    }
+}
+
+/// A display mode by its library name (`double-buffer`, `frameless`, `adaptive`).
+fn mode_parser() -> impl clap::builder::TypedValueParser<Value = DisplayMode> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(DisplayMode::ALL.map(DisplayMode::name))
+        .map(|s| s.parse().expect("a listed mode"))
+}
+
+/// Redraws per second, 1 to 1000.
+fn refresh(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (1.0..=1000.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "expected redraws per second from 1 to 1000, got `{s}`"
+        )),
+    }
 }
 
 /// `lucent merge`.

@@ -22,6 +22,10 @@ pub struct Job {
     pub loaded: Loaded,
     /// Wall time of reading and building the scene (accelerators included).
     pub load_time: std::time::Duration,
+    /// The camera as the file gives it (or the one framing a scene without one): the viewer
+    /// rebuilds it at the window's size.
+    #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+    pub camera: lucent_scene::desc::CameraDesc,
 }
 
 impl Job {
@@ -64,11 +68,17 @@ impl Job {
         for w in &loaded.warnings {
             eprintln!("warning: {w}");
         }
+        let camera = if file.camera_given {
+            file.desc.camera.get_ref().clone()
+        } else {
+            file.framing_camera(&loaded)
+        };
         Ok(Self {
             scene_path: scene.map(Path::to_path_buf),
             overrides: overrides.clone(),
             loaded,
             load_time: start.elapsed(),
+            camera,
         })
     }
 

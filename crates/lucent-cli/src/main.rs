@@ -12,6 +12,7 @@ mod merge;
 mod output;
 mod render;
 mod study;
+mod view;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -31,6 +32,7 @@ fn main() -> ExitCode {
         cli::Command::Convert(a) => convert::run(&a),
         cli::Command::Bench(a) => bench::run(&a),
         cli::Command::Study(cli::StudyCommand::Frameless(a)) => study::frameless(&a),
+        cli::Command::View(a) => view::run(&a),
     };
     match result {
         Ok(code) => code,
