@@ -10,6 +10,7 @@ use crate::{DisplayMode, Options, Summary, ViewError};
 use lucent::Rgb;
 use lucent::integrator::Integrator;
 use lucent::scene::Scene;
+use lucent::schedule::frameless::Presenter;
 use std::num::NonZeroU32;
 use std::rc::Rc;
 use std::sync::Arc;
@@ -140,14 +141,24 @@ impl App {
                 self.shared.reset(mode, rw, rh);
                 s = self.shared.screen();
             }
-            let shown = s.presenter.present(now);
-            self.image.clear();
-            self.image.extend_from_slice(shown);
-            (
+            let info = (
                 s.presenter.mode(),
                 now - s.presenter.oldest_shown(),
                 (s.width, s.height),
-            )
+            );
+            if let Presenter::Adaptive(_) = s.presenter {
+                // Its reconstruction filters every pixel: done on a copy, outside the lock the
+                // workers take to plan and accept.
+                let mut copy = s.presenter.clone();
+                drop(s);
+                self.image.clear();
+                self.image.extend_from_slice(copy.present(now));
+            } else {
+                let shown = s.presenter.present(now);
+                self.image.clear();
+                self.image.extend_from_slice(shown);
+            }
+            info
         };
         surface.resize(w, h).map_err(|e| e.to_string())?;
         let mut buffer = surface.buffer_mut().map_err(|e| e.to_string())?;

@@ -16,7 +16,6 @@ pub mod display;
 mod input;
 pub mod pose;
 pub mod readout;
-mod stand_in;
 pub mod workers;
 
 pub use lucent::schedule::frameless::DisplayMode;

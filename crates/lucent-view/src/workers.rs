@@ -7,11 +7,12 @@
 
 use crate::clock::Clock;
 use crate::pose::Pose;
-use crate::stand_in::Snapshots;
 use lucent::camera::Camera;
 use lucent::integrator::{Integrator, RayStats};
 use lucent::scene::Scene;
-use lucent::schedule::frameless::{DisplayMode, Presenter, Sample, SampleRequest, trace_sample};
+use lucent::schedule::frameless::{
+    DisplayMode, Presenter, Sample, SampleRequest, Snapshots, trace_sample,
+};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
@@ -117,15 +118,28 @@ impl Shared {
         };
     }
 
-    /// The pose the camera has now: the user's, or the scene's.
+    /// The pose the camera has now: the user's, or the scene's at the clock's instant (so
+    /// that taking over a moving camera starts where it is).
     pub fn pose(&self) -> Pose {
-        self.control().pose.unwrap_or(self.scene_pose)
+        let (user, now) = {
+            let c = self.control();
+            (c.pose, c.clock.now())
+        };
+        user.unwrap_or_else(|| self.scene_pose_in(&self.snapshots.at(now)))
     }
 
-    /// The pose of the scene's own camera at `scene` (a snapshot).
-    fn scene_pose_in(&self, _scene: &Scene) -> Pose {
-        // The scene's camera stands still until the library's `Camera` gives its pose back.
-        self.scene_pose
+    /// The pose of the scene's own camera in `scene` (a snapshot): its eye and frame, looking
+    /// at the point as far ahead as the file's look-at was.
+    fn scene_pose_in(&self, scene: &Scene) -> Pose {
+        let c = &scene.camera;
+        let reach = (self.scene_pose.look_at - self.scene_pose.eye).length();
+        Pose {
+            eye: c.eye(),
+            look_at: c.eye() + c.forward() * reach,
+            up: c.up_dir(),
+            fov_degrees: c.fov_degrees(),
+            lens: c.lens(),
+        }
     }
 }
 

@@ -20,7 +20,7 @@
 //! **Reconstruction.** Each pixel shows a weighted mean of the latest samples of itself and its
 //! eight neighbours, `Σ w c / Σ w` with `w = exp(−d² / 2σ²) · exp(−age / τ)` — the adaptive
 //! space–time filter of the paper in a small form. `τ`, how long a sample stays trustworthy,
-//! is short where the tile changes fast (`τ = 1 / (change / C + 1 / τ_max)`); `σ`, the spatial
+//! is short where the sample's tile changes fast (`τ = 1 / (change / C + 1 / τ_max)`); `σ`, the spatial
 //! reach, widens as the pixel's own sample lags behind its freshest neighbour's, against `τ`. A still region keeps its own,
 //! sharp, samples; a moving edge takes the fresher samples of its neighbours over its stale
 //! own: what double buffering shows a frame late and frameless shows smeared, adaptive shows
@@ -82,6 +82,8 @@ pub struct AdaptiveFrameless {
     time: Vec<f64>,
     /// The reconstructed picture.
     shown: Vec<Rgb>,
+    /// Scratch: each pixel's sample's trust, `exp(−age / τ)`.
+    trust: Vec<f32>,
     /// Scratch: the tiles' cumulative priorities.
     cdf: Vec<f64>,
 }
@@ -127,6 +129,7 @@ impl AdaptiveFrameless {
             value: vec![Rgb::BLACK; n],
             time: vec![f64::NEG_INFINITY; n],
             shown: vec![Rgb::BLACK; n],
+            trust: Vec::new(),
             cdf: Vec::new(),
         }
     }
@@ -239,21 +242,44 @@ impl AdaptiveFrameless {
     /// Reconstructs the picture at `now` (see the module docs).
     pub fn present(&mut self, now: f64) -> &[Rgb] {
         let (w, h) = (self.width as usize, self.height as usize);
-        let (value, time, tiles) = (&self.value, &self.time, &self.tiles);
         let tiles_x = self.tiles_x as usize;
+        let tau_at = |tiles: &[TileState], x: usize, y: usize| {
+            let tile = &tiles[(y / TILE as usize) * tiles_x + x / TILE as usize];
+            1.0 / (tile.change / CHANGE_SCALE + 1.0 / TAU_MAX)
+        };
+        // Each sample's trust, once per pixel (not once per pixel and neighbour: the filter
+        // runs at the display's rate).
+        let (time, tiles) = (&self.time, &self.tiles);
+        self.trust.resize(w * h, 0.0);
+        self.trust
+            .par_chunks_mut(w.max(1))
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, trust) in row.iter_mut().enumerate() {
+                    let t = time[y * w + x];
+                    *trust = if t.is_finite() {
+                        (-((now - t).max(0.0) as f32) / tau_at(tiles, x, y)).exp()
+                    } else {
+                        0.0
+                    };
+                }
+            });
+        let (value, trust) = (&self.value, &self.trust);
         self.shown
             .par_chunks_mut(w.max(1))
             .enumerate()
             .for_each(|(y, row)| {
                 for (x, out) in row.iter_mut().enumerate() {
                     let p = y * w + x;
-                    let tile = &tiles[(y / TILE as usize) * tiles_x + x / TILE as usize];
-                    let tau = 1.0 / (tile.change / CHANGE_SCALE + 1.0 / TAU_MAX);
+                    let (ys, xs) = (
+                        y.saturating_sub(1)..(y + 2).min(h),
+                        x.saturating_sub(1)..(x + 2).min(w),
+                    );
                     // How much older the pixel's own sample is than its freshest neighbour's:
                     // a picture that is old everywhere alike is kept sharp.
                     let mut freshest = time[p];
-                    for qy in y.saturating_sub(1)..(y + 2).min(h) {
-                        for qx in x.saturating_sub(1)..(x + 2).min(w) {
+                    for qy in ys.clone() {
+                        for qx in xs.clone() {
                             freshest = freshest.max(time[qy * w + qx]);
                         }
                     }
@@ -262,7 +288,7 @@ impl AdaptiveFrameless {
                     } else {
                         f32::INFINITY
                     };
-                    let stale = 1.0 - (-lag / tau).exp();
+                    let stale = 1.0 - (-lag / tau_at(tiles, x, y)).exp();
                     let sigma = SIGMA_MIN + (SIGMA_MAX - SIGMA_MIN) * stale;
                     let spatial = [
                         1.0,
@@ -270,15 +296,11 @@ impl AdaptiveFrameless {
                         (-1.0 / (sigma * sigma)).exp(),
                     ];
                     let (mut sum, mut weight) = (Rgb::BLACK, 0.0f32);
-                    for qy in y.saturating_sub(1)..(y + 2).min(h) {
-                        for qx in x.saturating_sub(1)..(x + 2).min(w) {
+                    for qy in ys.clone() {
+                        for qx in xs.clone() {
                             let q = qy * w + qx;
-                            if !time[q].is_finite() {
-                                continue;
-                            }
                             let d2 = (qx != x) as usize + (qy != y) as usize;
-                            let age = (now - time[q]).max(0.0) as f32;
-                            let wq = spatial[d2] * (-age / tau).exp();
+                            let wq = spatial[d2] * trust[q];
                             sum += value[q] * wq;
                             weight += wq;
                         }
