@@ -13,7 +13,8 @@
 //! been sampled hides. A batch of requests is shared out over the tiles in proportion to
 //! priority by systematic sampling (one random offset, evenly spaced picks of the cumulative
 //! priorities), and within a tile the pixels take turns in a random order, so that a tile's
-//! samples spread over it. Where Dayal et al. split and merge a k-d tree of tiles to keep
+//! samples spread over it. One request in four instead follows the frameless order, so that
+//! the whole screen is still covered evenly at a quarter of the rate. Where Dayal et al. split and merge a k-d tree of tiles to keep
 //! their number fixed, a fixed grid of small tiles serves a CPU just as well: the priorities
 //! are cheap to recompute for every batch.
 //!
@@ -26,11 +27,16 @@
 //! own: what double buffering shows a frame late and frameless shows smeared, adaptive shows
 //! soft but current.
 
+use super::stochastic::Order;
 use super::{Sample, SampleRequest, spread};
 use crate::Rgb;
 use crate::sampling::{mix64, permute, uniform};
 use rayon::prelude::*;
 
+/// One request in this many follows the frameless order instead of the priorities: a floor of
+/// even coverage, so that a change where nothing changed before is found within a few passes
+/// however the priorities lean (Dayal et al. likewise keep part of the budget unsteered).
+const COVER: usize = 4;
 /// Side of a tile in pixels.
 const TILE: u32 = 8;
 /// Weight of the moving averages' newest value.
@@ -86,6 +92,8 @@ pub struct AdaptiveFrameless {
     trust: Vec<f32>,
     /// Scratch: the tiles' cumulative priorities.
     cdf: Vec<f64>,
+    /// The frameless order that a share of the samples follows.
+    cover: Order,
 }
 
 /// How much two colours differ: the largest difference of a channel, each clamped to the
@@ -131,6 +139,7 @@ impl AdaptiveFrameless {
             shown: vec![Rgb::BLACK; n],
             trust: Vec::new(),
             cdf: Vec::new(),
+            cover: Order::new(width * height, seed ^ 0x5eed),
         }
     }
 
@@ -169,6 +178,15 @@ impl AdaptiveFrameless {
         let mut tile = 0;
         out.reserve(count);
         for i in 0..count {
+            let slot = permute(i as u32, count as u32, time_key) as usize;
+            let time = spread(t0, t1, slot, count);
+            // Every COVER-th request covers the screen in frameless order.
+            if i % COVER == COVER - 1 {
+                if let Some(pixel) = self.cover.next() {
+                    out.push(SampleRequest { pixel, time });
+                    continue;
+                }
+            }
             let target = (i as f64 + offset) / count as f64 * total;
             while tile + 1 < self.tiles.len() && self.cdf[tile] <= target {
                 tile += 1;
@@ -183,10 +201,9 @@ impl AdaptiveFrameless {
                 t.pass += 1;
             }
             let (x, y) = (t.x0 + k % t.w, t.y0 + k / t.w);
-            let slot = permute(i as u32, count as u32, time_key) as usize;
             out.push(SampleRequest {
                 pixel: y * self.width + x,
-                time: spread(t0, t1, slot, count),
+                time,
             });
         }
     }

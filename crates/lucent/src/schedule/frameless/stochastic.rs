@@ -10,15 +10,49 @@ use super::{Sample, SampleRequest, spread};
 use crate::Rgb;
 use crate::sampling::{mix64, permute};
 
+/// The stochastic order of the pixels of a screen: a new permutation every pass.
+#[derive(Clone, Debug)]
+pub(super) struct Order {
+    pixels: u32,
+    seed: u64,
+    /// Passes over the screen handed out so far, and the position in the current one.
+    pass: u64,
+    cursor: u32,
+}
+
+impl Order {
+    /// The order of `pixels` pixels chosen by `seed`.
+    pub(super) fn new(pixels: u32, seed: u64) -> Self {
+        Self {
+            pixels,
+            seed,
+            pass: 0,
+            cursor: 0,
+        }
+    }
+
+    /// The next pixel (`None` for an empty screen).
+    pub(super) fn next(&mut self) -> Option<u32> {
+        if self.pixels == 0 {
+            return None;
+        }
+        let key = mix64(self.seed ^ mix64(self.pass));
+        let pixel = permute(self.cursor, self.pixels, key);
+        self.cursor += 1;
+        if self.cursor == self.pixels {
+            self.cursor = 0;
+            self.pass += 1;
+        }
+        Some(pixel)
+    }
+}
+
 /// The frameless display: one buffer, written by every sample and shown as it is.
 #[derive(Clone, Debug)]
 pub struct Frameless {
     width: u32,
     height: u32,
-    seed: u64,
-    /// Passes over the screen handed out so far, and the position in the current one.
-    pass: u64,
-    cursor: u32,
+    order: Order,
     image: Vec<Rgb>,
     times: Vec<f64>,
 }
@@ -30,9 +64,7 @@ impl Frameless {
         Self {
             width,
             height,
-            seed,
-            pass: 0,
-            cursor: 0,
+            order: Order::new(width * height, seed),
             image: vec![Rgb::BLACK; n],
             times: vec![f64::NEG_INFINITY; n],
         }
@@ -45,23 +77,12 @@ impl Frameless {
 
     /// The next `count` pixels of the order, at instants spread over `[t0, t1)`.
     pub fn plan(&mut self, count: usize, t0: f64, t1: f64, out: &mut Vec<SampleRequest>) {
-        let n = self.width * self.height;
-        if n == 0 {
-            return;
-        }
-        out.reserve(count);
-        for i in 0..count {
-            let key = mix64(self.seed ^ mix64(self.pass));
-            out.push(SampleRequest {
-                pixel: permute(self.cursor, n, key),
+        out.extend((0..count).map_while(|i| {
+            Some(SampleRequest {
+                pixel: self.order.next()?,
                 time: spread(t0, t1, i, count),
-            });
-            self.cursor += 1;
-            if self.cursor == n {
-                self.cursor = 0;
-                self.pass += 1;
-            }
-        }
+            })
+        }));
     }
 
     /// Writes the samples straight into the displayed buffer.
