@@ -1,6 +1,8 @@
 //! Beams: a ray of a beam traced from the beam's cut finds exactly the hit it finds from the
 //! root — random scenes, random pinhole cameras, random tiles, rays anywhere in the tile
-//! (its corners and edges included).
+//! (its corners and edges included); and a shadow ray of a shadow beam (from points of a box
+//! towards a point light) traced from its cut meets exactly the blockers it meets from the
+//! root.
 
 use glam::{Vec2, Vec3};
 use lucent_accel::triangle::watertight;
@@ -98,6 +100,90 @@ proptest! {
                 best.map(|(t, i)| (t.to_bits(), i))
             };
             prop_assert_eq!(nearest(false), nearest(true), "generic leaves");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn shadow_rays_from_the_cut_meet_the_blockers_rays_from_the_root_meet(
+        centres in prop::collection::vec(vec3(4.0), 50..1200),
+        offsets in prop::collection::vec(prop::array::uniform3(vec3(0.4)), 1..8),
+        light in vec3(9.0),
+        corner in vec3(4.0),
+        size in vec3(1.5),
+        samples in prop::collection::vec(prop::array::uniform3(0.0f32..=1.0), 1..48),
+    ) {
+        let (positions, triangles) = soup(&centres, &offsets);
+        let lo = corner.min(corner + size);
+        let targets = lucent_accel::Aabb::new(lo, corner.max(corner + size) + 1e-3);
+        let Some(frustum) = Frustum::from_point_over(light, &targets) else { return Ok(()) };
+        let packed = WideTriangleBvh::new(&positions, &triangles);
+        let cut = packed.cut(&frustum);
+        let boxes: Vec<_> = triangles
+            .iter()
+            .map(|t| lucent_accel::Aabb::from_points(t.map(|i| positions[i as usize])))
+            .collect();
+        let generic = WideBvh::new(&boxes);
+        let generic_cut = generic.cut(&frustum);
+        let size = targets.max - targets.min;
+        // The box's corners (as shadow rays start there too) and points inside it, and a
+        // triangle's vertex, so that some rays graze a blocker's corner.
+        let corners = (0..8).map(|i| {
+            let pick = |bit: usize| ((i >> bit) & 1) as f32;
+            targets.min + size * Vec3::new(pick(0), pick(1), pick(2))
+        });
+        let inside = samples.iter().map(|s| targets.min + size * Vec3::from_array(*s));
+        for origin in corners.chain(inside) {
+            let offset = light - origin;
+            let distance = offset.length();
+            if distance <= 0.0 {
+                continue;
+            }
+            let ray = Ray::new(origin, offset / distance);
+            let mut stats = TraversalStats::default();
+            let all = |from_cut: bool| {
+                let mut met = Vec::new();
+                let leaf = |i: u32| {
+                    met.push(i);
+                    false
+                };
+                let mut stats = TraversalStats::default();
+                if from_cut {
+                    packed.any_hit_in(&cut, &ray, distance, &mut stats, leaf);
+                } else {
+                    packed.any_hit(&ray, distance, &mut stats, leaf);
+                }
+                met.sort_unstable();
+                met
+            };
+            let met = all(false);
+            prop_assert_eq!(&met, &all(true), "packed leaves: every blocker");
+            let blocked = packed.any_hit(&ray, distance, &mut stats, |_| true);
+            prop_assert_eq!(blocked, !met.is_empty());
+            prop_assert_eq!(blocked, packed.any_hit_in(&cut, &ray, distance, &mut stats, |_| true));
+
+            let generic_met = |from_cut: bool| {
+                let mut met = Vec::new();
+                let leaf = |i: u32| {
+                    let v = triangles[i as usize].map(|k| positions[k as usize]);
+                    if watertight(&ray, v, distance).is_some() {
+                        met.push(i);
+                    }
+                    false
+                };
+                let mut stats = TraversalStats::default();
+                if from_cut {
+                    generic.any_hit_in(&generic_cut, &ray, distance, &mut stats, leaf);
+                } else {
+                    generic.any_hit(&ray, distance, &mut stats, leaf);
+                }
+                met.sort_unstable();
+                met
+            };
+            prop_assert_eq!(generic_met(false), generic_met(true), "generic leaves");
         }
     }
 }

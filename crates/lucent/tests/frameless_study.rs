@@ -62,10 +62,19 @@ fn frameless_beats_double_buffering_and_adaptive_beats_frameless() {
         );
         assert_eq!(r.refreshes.len(), 240);
         let expected = settings().samples_per_second * 5.0;
-        assert!((r.samples as f64 - expected).abs() <= 1.0, "{} samples", r.samples);
+        assert!(
+            (r.samples as f64 - expected).abs() <= 1.0,
+            "{} samples",
+            r.samples
+        );
     }
     for r in &report.runs {
-        eprintln!("{:>13} at {:>8.0}/s: rmse {:.4}", r.mode.name(), r.samples_per_second, r.mean_rmse());
+        eprintln!(
+            "{:>13} at {:>8.0}/s: rmse {:.4}",
+            r.mode.name(),
+            r.samples_per_second,
+            r.mean_rmse()
+        );
     }
     let refresh = 1.0 / 60.0;
     let frame = 0.1;
@@ -74,8 +83,16 @@ fn frameless_beats_double_buffering_and_adaptive_beats_frameless() {
     // With a few hundred samples a refresh and a few dozen changing pixels, a change late in
     // a refresh interval is often first sampled in the next one: about a refresh on average
     // here (the study's scene, with thousands of samples a refresh, stays under one).
-    assert!(fl.mean_latency() <= 1.5 * refresh, "frameless latency {}", fl.mean_latency());
-    assert!(db.mean_latency() >= frame, "double-buffer latency {}", db.mean_latency());
+    assert!(
+        fl.mean_latency() <= 1.5 * refresh,
+        "frameless latency {}",
+        fl.mean_latency()
+    );
+    assert!(
+        db.mean_latency() >= frame,
+        "double-buffer latency {}",
+        db.mean_latency()
+    );
     assert!(db.mean_stale() > fl.mean_stale());
     let (rate, bound) = report.matching_rate(DisplayMode::Adaptive).unwrap();
     eprintln!("adaptive matches double buffering at {rate:.0} samples/s (bound: {bound})");

@@ -155,9 +155,35 @@ impl WideTriangleBvh {
         if let Some(avx) = Avx::detect() {
             // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf) };
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &[]) };
         }
-        self.any(Sse, ray, t_max, stats, leaf)
+        self.any(Sse, ray, t_max, stats, leaf, &[])
+    }
+
+    /// [`WideTriangleBvh::any_hit`] for a ray of the beam that `cut` was made for (a shadow
+    /// beam, see [`Frustum::from_point_over`]): the same answer, and the same triangles
+    /// offered to `leaf` when it never says stop, though in another order.
+    pub fn any_hit_in<F>(
+        &self,
+        cut: &Cut,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
+        if cut.misses {
+            return false;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = Avx::detect() {
+            // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &cut.nodes) };
+        }
+        self.any(Sse, ray, t_max, stats, leaf, &cut.nodes)
     }
 
     /// [`WideTriangleBvh::closest_hit`] on the baseline instruction set (two SSE registers per
@@ -183,7 +209,7 @@ impl WideTriangleBvh {
         stats: &mut TraversalStats,
         leaf: F,
     ) -> bool {
-        self.any(Sse, ray, t_max, stats, leaf)
+        self.any(Sse, ray, t_max, stats, leaf, &[])
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -209,11 +235,12 @@ impl WideTriangleBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32) -> bool,
     {
-        self.any(s, ray, t_max, stats, leaf)
+        self.any(s, ray, t_max, stats, leaf, entry)
     }
 
     #[inline(always)]
@@ -246,6 +273,7 @@ impl WideTriangleBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32) -> bool,
@@ -258,7 +286,7 @@ impl WideTriangleBvh {
             limit: t_max.next_down(),
             leaf,
         };
-        self.bvh.any_walk(s, ray, t_max, stats, &mut leaves)
+        self.bvh.any_walk(s, ray, t_max, stats, &mut leaves, entry)
     }
 }
 
