@@ -119,6 +119,11 @@ impl Frustum {
         )
     }
 
+    /// The unit inward normals of the four side planes, through [`Frustum::origin`].
+    pub(crate) fn normals(&self) -> [Vec3; 4] {
+        self.normals
+    }
+
     /// The common origin of the beam's rays.
     pub fn origin(&self) -> Vec3 {
         self.origin

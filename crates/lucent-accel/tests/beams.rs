@@ -129,14 +129,27 @@ proptest! {
         let generic = WideBvh::new(&boxes);
         let generic_cut = generic.cut(&frustum);
         let size = targets.max - targets.min;
-        // The box's corners (as shadow rays start there too) and points inside it, and a
-        // triangle's vertex, so that some rays graze a blocker's corner.
+        // The box's corners (as shadow rays start there too) and points inside it.
         let corners = (0..8).map(|i| {
             let pick = |bit: usize| ((i >> bit) & 1) as f32;
             targets.min + size * Vec3::new(pick(0), pick(1), pick(2))
         });
         let inside = samples.iter().map(|s| targets.min + size * Vec3::from_array(*s));
-        for origin in corners.chain(inside) {
+        // Vertices of the soup inside the box: rays from them graze their own triangles.
+        let vertices = positions.iter().copied().filter(|p| {
+            p.cmpge(targets.min).all() && p.cmple(targets.max).all()
+        });
+        // Points level with the light on an axis: a direction component exactly zero, where
+        // the slab test meets 0 · ∞.
+        let level = samples.iter().flat_map(|s| {
+            let p = targets.min + size * Vec3::from_array(*s);
+            (0..3).filter_map(move |a| {
+                let mut q = p;
+                q[a] = light[a];
+                (q[a] >= targets.min[a] && q[a] <= targets.max[a]).then_some(q)
+            })
+        });
+        for origin in corners.chain(inside).chain(vertices.take(32)).chain(level) {
             let offset = light - origin;
             let distance = offset.length();
             if distance <= 0.0 {
@@ -214,6 +227,33 @@ fn a_beam_beside_the_scene_misses_it_and_a_narrow_one_skips_levels() {
     let b = bvh.closest_hit_in(&narrow, &ray, f32::INFINITY, None, &mut from_cut);
     assert_eq!(a.map(|h| h.0), b.map(|h| h.0));
     assert!(a.is_some());
+    assert!(
+        from_cut.nodes_visited < from_root.nodes_visited,
+        "{from_cut:?} vs {from_root:?}"
+    );
+}
+
+#[test]
+fn a_shadow_beam_over_a_small_patch_skips_levels_and_meets_the_same_blockers() {
+    let centres: Vec<Vec3> = (0..4096)
+        .map(|i| Vec3::new((i % 16) as f32, ((i / 16) % 16) as f32, (i / 256) as f32) * 0.5)
+        .collect();
+    let (positions, triangles) = soup(&centres, &[[Vec3::ZERO, Vec3::X * 0.2, Vec3::Y * 0.2]]);
+    let bvh = WideTriangleBvh::new(&positions, &triangles);
+    let light = Vec3::new(3.6, 3.6, -10.0);
+    let patch = lucent_accel::Aabb::new(Vec3::new(1.0, 1.0, 9.0), Vec3::new(1.3, 1.3, 9.1));
+    let cut = bvh.cut(&Frustum::from_point_over(light, &patch).unwrap());
+    assert!(!cut.misses() && cut.virtual_nodes() >= 1);
+    let (mut from_root, mut from_cut) = (TraversalStats::default(), TraversalStats::default());
+    for k in 0..16 {
+        let origin = patch.min + (patch.max - patch.min) * (k as f32 / 15.0);
+        let offset = light - origin;
+        let ray = Ray::new(origin, offset.normalize());
+        let t = offset.length();
+        let a = bvh.any_hit(&ray, t, &mut from_root, |_| true);
+        let b = bvh.any_hit_in(&cut, &ray, t, &mut from_cut, |_| true);
+        assert_eq!(a, b);
+    }
     assert!(
         from_cut.nodes_visited < from_root.nodes_visited,
         "{from_cut:?} vs {from_root:?}"

@@ -13,7 +13,7 @@ mod simd;
 mod traverse;
 mod triangles;
 
-pub use cut::Cut;
+pub use cut::{BUDGET as CUT_BUDGET, Cut};
 pub use lanes::{LANES, Lanes};
 pub use triangles::{PackedHit, WideTriangleBvh};
 

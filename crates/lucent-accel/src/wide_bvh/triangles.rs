@@ -123,6 +123,11 @@ impl WideTriangleBvh {
         self.bvh.cut(frustum)
     }
 
+    /// [`WideTriangleBvh::cut`] with at most `budget` entries (see [`WideBvh::cut_within`]).
+    pub fn cut_within(&self, frustum: &Frustum, budget: usize) -> Cut {
+        self.bvh.cut_within(frustum, budget)
+    }
+
     /// [`WideTriangleBvh::closest_hit`] for a ray of the beam that `cut` was made for: the
     /// same hit, from fewer nodes.
     pub fn closest_hit_in(

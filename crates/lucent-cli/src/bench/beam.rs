@@ -28,6 +28,9 @@ pub struct BeamRow {
     pub per_pixel: Measurement,
     /// Each tile as a beam.
     pub beam: Measurement,
+    /// The shadow rays towards point lights: per pixel, and as shadow beams (`None` without a
+    /// point light).
+    pub shadow: Option<(Measurement, Measurement)>,
 }
 
 /// The camera rays of `scene` in tiles of `tile`, per pixel and as beams, on `threads`.
@@ -111,25 +114,40 @@ pub fn measure(
     Ok((per_pixel.expect("measured"), beam.expect("measured")))
 }
 
-/// The rows as a table: Mrays/s per pixel and with beams, their ratio, nodes per ray.
+/// The rows as tables (camera rays, then shadow rays): Mrays/s per pixel and with beams, their
+/// ratio, nodes per ray.
 pub fn table(rows: &[BeamRow]) -> String {
-    let mut out = String::from(
-        "\nBeam tracing of camera rays (same rays, same tiles):\n\
-         scene                       tile threads  per-pixel     beam  ratio  nodes/ray (pixel → beam)\n",
-    );
+    let mut out = String::from("\nBeam tracing of camera rays (same rays, same tiles):\n");
+    out.push_str(HEADER);
     for r in rows {
-        let nodes = |m: &Measurement| m.stats.nodes_visited as f64 / m.rays.max(1) as f64;
-        out.push_str(&format!(
-            "{:<27} {:>4} {:>7} {:>10.3} {:>8.3} {:>5.2}×  {:>6.2} → {:.2}\n",
-            r.scene,
-            r.tile,
-            r.threads,
-            r.per_pixel.mrays(),
-            r.beam.mrays(),
-            r.beam.mrays() / r.per_pixel.mrays(),
-            nodes(&r.per_pixel),
-            nodes(&r.beam),
-        ));
+        out.push_str(&line(r, &r.per_pixel, &r.beam));
+    }
+    out.push_str("\nShadow beams towards point lights (same shadow rays, same tiles):\n");
+    out.push_str(HEADER);
+    for r in rows {
+        if let Some((p, b)) = &r.shadow {
+            out.push_str(&line(r, p, b));
+        }
     }
     out
+}
+
+const HEADER: &str = "scene                       tile threads  per-pixel     beam  ratio  nodes/ray (pixel → beam)  triangles/ray\n";
+
+fn line(r: &BeamRow, per_pixel: &Measurement, beam: &Measurement) -> String {
+    let nodes = |m: &Measurement| m.stats.nodes_visited as f64 / m.rays.max(1) as f64;
+    let prims = |m: &Measurement| m.stats.primitives_tested as f64 / m.rays.max(1) as f64;
+    format!(
+        "{:<27} {:>4} {:>7} {:>10.3} {:>8.3} {:>5.2}×  {:>6.2} → {:<6.2}  {:>12.1} → {:.1}\n",
+        r.scene,
+        r.tile,
+        r.threads,
+        per_pixel.mrays(),
+        beam.mrays(),
+        beam.mrays() / per_pixel.mrays(),
+        nodes(per_pixel),
+        nodes(beam),
+        prims(per_pixel),
+        prims(beam),
+    )
 }

@@ -13,6 +13,7 @@ mod peers;
 mod rays;
 mod report;
 mod sampling;
+mod shadow;
 
 use crate::cli::BenchArgs;
 use anyhow::{Context, bail};
@@ -103,12 +104,21 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
                             per_pixel.mrays(),
                             beam.mrays()
                         );
+                        let shadow = shadow::measure(&scene, tile, t)?;
+                        if let Some((p, b)) = &shadow {
+                            eprintln!(
+                                "  shadow beam {tile}×{tile}/{t}t: per-pixel {:.3}, beam {:.3} Mrays/s",
+                                p.mrays(),
+                                b.mrays()
+                            );
+                        }
                         beam_rows.push(beam::BeamRow {
                             scene: name.clone(),
                             tile,
                             threads: t,
                             per_pixel,
                             beam,
+                            shadow,
                         });
                     }
                 }

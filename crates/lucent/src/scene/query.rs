@@ -126,6 +126,7 @@ fn merged_skip(m: &super::Merged, from: Option<Leaving>) -> Option<u32> {
 /// space) in `(0, t_max)` until it returns `true`; returns whether it did.
 fn blockers_in<F>(
     entry: &super::MeshEntry,
+    cut: Option<&Cut>,
     local: &Ray,
     test: crate::shape::TriangleTest,
     t_max: f32,
@@ -141,7 +142,10 @@ where
                 .is_some()
                 && blocker(tri)
         }),
-        MeshAccel::Packed(packed) => packed.any_hit(local, t_max, stats, blocker),
+        MeshAccel::Packed(packed) => match cut {
+            Some(cut) => packed.any_hit_in(cut, local, t_max, stats, blocker),
+            None => packed.any_hit(local, t_max, stats, blocker),
+        },
         MeshAccel::Unused => false,
     }
 }
@@ -490,13 +494,32 @@ impl Scene {
         t_max: f32,
         from: Option<Leaving>,
         stats: &mut TraversalStats,
+        blocker: F,
+    ) -> bool
+    where
+        F: FnMut(u32, u32) -> bool,
+    {
+        self.blockers(ray, t_max, from, None, stats, blocker)
+    }
+
+    /// [`Scene::occlusion`], tested against only what `beam` can reach when there is one
+    /// (see [`Scene::occlusion_in`]).
+    pub(super) fn blockers<F>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        from: Option<Leaving>,
+        beam: Option<&Beam>,
+        stats: &mut TraversalStats,
         mut blocker: F,
     ) -> bool
     where
         F: FnMut(u32, u32) -> bool,
     {
         for (i, (plane, tag)) in self.planes.iter().enumerate() {
-            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32)) {
+            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32))
+                || beam.is_some_and(|b| !b.planes[i])
+            {
                 continue;
             }
             if plane.intersect(ray, t_max).is_some() && blocker(tag.material, 1) {
@@ -504,7 +527,7 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let leaf = |p: u32| match self.primitives[p as usize] {
+        let mut leaf = |p: u32, cut: Option<&Cut>| match self.primitives[p as usize] {
             Primitive::Sphere(i) => {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let crossings = match leaving_sphere(from, i) {
@@ -516,7 +539,7 @@ impl Scene {
             Primitive::Instance(k) => {
                 let material = self.instances[k as usize].1.material;
                 let skip = leaving_triangle(from, k);
-                self.blockers_in_instance(k, ray, t_max, &mut mesh_stats, |tri| {
+                self.blockers_in_instance(k, cut, ray, t_max, &mut mesh_stats, |tri| {
                     skip != Some(tri) && blocker(material, 1)
                 })
             }
@@ -529,6 +552,7 @@ impl Scene {
                 };
                 blockers_in(
                     &m.entry,
+                    cut,
                     ray,
                     self.triangle_test,
                     t_max,
@@ -537,11 +561,14 @@ impl Scene {
                 )
             }
         };
-        let blocked = if let [_] = self.primitives.as_slice() {
-            let mut leaf = leaf;
-            leaf(0)
-        } else {
-            self.accel.any_hit(ray, t_max, stats, leaf)
+        let blocked = match beam.and_then(|b| b.top.as_ref()) {
+            // The primitives the beam touches, with the accelerators' box test.
+            Some(touched) => touched.iter().any(|(p, cut)| {
+                self.primitive_bounds[*p as usize].hit(ray, t_max).is_some()
+                    && leaf(*p, cut.as_ref())
+            }),
+            None if self.primitives.len() == 1 => leaf(0, None),
+            None => self.accel.any_hit(ray, t_max, stats, |p| leaf(p, None)),
         };
         *stats += mesh_stats;
         blocked
@@ -552,6 +579,7 @@ impl Scene {
     fn blockers_in_instance<F>(
         &self,
         k: u32,
+        cut: Option<&Cut>,
         ray: &Ray,
         t_max: f32,
         stats: &mut TraversalStats,
@@ -563,7 +591,15 @@ impl Scene {
         let instance = &self.instances[k as usize].0;
         let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
         let entry = &self.meshes[instance.mesh as usize];
-        blockers_in(entry, &local, self.triangle_test, t_max, stats, blocker)
+        blockers_in(
+            entry,
+            cut,
+            &local,
+            self.triangle_test,
+            t_max,
+            stats,
+            blocker,
+        )
     }
 
     /// True when anything lies on `ray` in `(0, t_max)`.
