@@ -101,6 +101,29 @@ proptest! {
             };
             prop_assert_eq!(nearest(false), nearest(true), "generic leaves");
         }
+
+        // Packets of the same rays, eight at a time and a partial one at the end (a tile's edge),
+        // some with a finite t_max (rays that must miss what lies beyond).
+        let rays: Vec<Ray> = corners
+            .into_iter()
+            .chain(samples.iter().map(|&(a, b)| Vec2::new(x0 + a * (x1 - x0), y0 + b * (y1 - y0))))
+            .map(|p| Ray::new(eye, dir(p)))
+            .collect();
+        let limits: Vec<f32> = (0..rays.len())
+            .map(|i| if i % 3 == 2 { 6.0 + i as f32 * 0.25 } else { f32::INFINITY })
+            .collect();
+        let key = |h: Option<lucent_accel::wide_bvh::PackedHit>| {
+            h.map(|(i, h, v)| (i, h.t.to_bits(), h.bary.map(f32::to_bits), v))
+        };
+        for (chunk, limit) in rays.chunks(8).zip(limits.chunks(8)) {
+            let mut stats = TraversalStats::default();
+            let hits = packed.closest_hits_in(&cut, chunk, limit, &mut stats);
+            for (i, ray) in chunk.iter().enumerate() {
+                let alone = packed.closest_hit(ray, limit[i], None, &mut stats);
+                prop_assert_eq!(key(alone), key(hits[i]), "packet ray {}", i);
+            }
+            prop_assert!(hits[chunk.len()..].iter().all(Option::is_none));
+        }
     }
 }
 
@@ -258,4 +281,46 @@ fn a_shadow_beam_over_a_small_patch_skips_levels_and_meets_the_same_blockers() {
         from_cut.nodes_visited < from_root.nodes_visited,
         "{from_cut:?} vs {from_root:?}"
     );
+}
+
+#[test]
+fn packets_of_axis_parallel_and_missing_rays_find_what_single_rays_find() {
+    let centres: Vec<Vec3> = (0..4096)
+        .map(|i| Vec3::new((i % 16) as f32, ((i / 16) % 16) as f32, (i / 256) as f32) * 0.5)
+        .collect();
+    let (positions, triangles) = soup(&centres, &[[Vec3::ZERO, Vec3::X * 0.2, Vec3::Y * 0.2]]);
+    let bvh = WideTriangleBvh::new(&positions, &triangles);
+    // From a point level with a column of triangles' corners: the central rays have two zero
+    // direction components, and their neighbours graze the corners; the outer ones miss.
+    let eye = Vec3::new(3.5, 3.5, -10.0);
+    let c = |x: f32, y: f32| Vec3::new(x, y, 1.0);
+    let w = 0.3;
+    let frustum = Frustum::new(eye, [c(-w, -w), c(w, -w), c(w, w), c(-w, w)]).unwrap();
+    let cut = bvh.cut(&frustum);
+    let dirs: Vec<Vec3> = [
+        0.0, 1e-7, -1e-7, 0.01, 0.02, 0.29, -0.29, 0.3, -0.3, 0.1, -0.1,
+    ]
+    .iter()
+    .flat_map(|&x| [0.0, 1e-7, 0.29, -0.3].map(move |y| c(x, y)))
+    .collect();
+    let rays: Vec<Ray> = dirs.iter().map(|d| Ray::new(eye, d.normalize())).collect();
+    let mut stats = TraversalStats::default();
+    let (mut hit, mut missed) = (0, 0);
+    for chunk in rays.chunks(8) {
+        let limits = vec![f32::INFINITY; chunk.len()];
+        let hits = bvh.closest_hits_in(&cut, chunk, &limits, &mut stats);
+        for (i, ray) in chunk.iter().enumerate() {
+            let alone = bvh.closest_hit(ray, f32::INFINITY, None, &mut stats);
+            let key = |h: Option<lucent_accel::wide_bvh::PackedHit>| {
+                h.map(|(i, h, _)| (i, h.t.to_bits(), h.bary.map(f32::to_bits)))
+            };
+            assert_eq!(key(alone), key(hits[i]), "{ray:?}");
+            if alone.is_some() {
+                hit += 1;
+            } else {
+                missed += 1;
+            }
+        }
+    }
+    assert!(hit > 0 && missed > 0, "{hit} hit, {missed} missed");
 }

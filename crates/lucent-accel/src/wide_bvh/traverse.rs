@@ -13,7 +13,7 @@ use arrayvec::ArrayVec;
 /// Stack entries: each level pushes at most seven siblings, and the binary tree's depth is
 /// bounded (`BuildOptions::max_sah_depth` plus log2 of the primitive count), so a wide tree is
 /// at most about 80 levels deep. (An `ArrayVec` is not zeroed on creation, unlike an array.)
-const STACK_SIZE: usize = 7 * 80;
+pub(super) const STACK_SIZE: usize = 7 * 80;
 
 /// A ray prepared for eight-box tests.
 pub(crate) struct RayPre {

@@ -18,7 +18,7 @@ use glam::Vec3;
 /// that a pack spans five of them, not six.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-struct Pack {
+pub(super) struct Pack {
     v: [[Lanes; 3]; 3],
     ids: [u32; LANES],
 }
@@ -27,8 +27,8 @@ struct Pack {
 #[derive(Clone, Debug, Default)]
 pub struct WideTriangleBvh {
     /// Leaves refer to packs: (first pack, number of packs).
-    bvh: WideBvh,
-    packs: Vec<Pack>,
+    pub(super) bvh: WideBvh,
+    pub(super) packs: Vec<Pack>,
 }
 
 /// Triangles per leaf: one pack. (Measured on the bunny and teapot: leaves of 8 beat 2, 4, 6,
@@ -299,12 +299,12 @@ impl WideTriangleBvh {
 pub type PackedHit = (u32, TriangleHit, [Vec3; 3]);
 
 /// The closest-hit leaf test: the nearest hit over packs, ties to the lower triangle index.
-struct NearestInPacks<'a, S> {
-    s: S,
-    packs: &'a [Pack],
-    pre: PackRay,
-    skip: Option<u32>,
-    best: Option<PackedHit>,
+pub(super) struct NearestInPacks<'a, S> {
+    pub(super) s: S,
+    pub(super) packs: &'a [Pack],
+    pub(super) pre: PackRay,
+    pub(super) skip: Option<u32>,
+    pub(super) best: Option<PackedHit>,
 }
 
 impl<S: Simd> ClosestLeaf for NearestInPacks<'_, S> {
@@ -381,13 +381,13 @@ impl<S: Simd, F: FnMut(u32) -> bool> AnyLeaf for BlockersInPacks<'_, S, F> {
 }
 
 /// The ray's origin and shear.
-struct PackRay {
+pub(super) struct PackRay {
     origin: [f32; 3],
     shear: Shear,
 }
 
 impl PackRay {
-    fn new(ray: &Ray) -> Self {
+    pub(super) fn new(ray: &Ray) -> Self {
         Self {
             origin: ray.origin.to_array(),
             shear: Shear::new(ray),
