@@ -98,11 +98,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
             if kind == AccelKind::Wide {
                 for tile in beam::TILES {
                     for &t in &threads {
-                        let (per_pixel, beam) = beam::measure(&scene, tile, t)?;
+                        let (per_pixel, beam, packets) = beam::measure(&scene, tile, t)?;
                         eprintln!(
-                            "  beam {tile}×{tile}/{t}t: per-pixel {:.3}, beam {:.3} Mrays/s",
+                            "  beam {tile}×{tile}/{t}t: per-pixel {:.3}, beam {:.3}, packets {:.3} Mrays/s",
                             per_pixel.mrays(),
-                            beam.mrays()
+                            beam.mrays(),
+                            packets.mrays()
                         );
                         let shadow = shadow::measure(&scene, tile, t)?;
                         if let Some((p, b)) = &shadow {
@@ -118,6 +119,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
                             threads: t,
                             per_pixel,
                             beam,
+                            packets,
                             shadow,
                         });
                     }

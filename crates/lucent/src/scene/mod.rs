@@ -13,6 +13,7 @@
 
 mod beam;
 mod builder;
+mod packet;
 mod query;
 
 pub use beam::Beam;

@@ -12,7 +12,7 @@ use lucent_accel::{Accelerator, Cut, Ray, TraversalStats, WideTriangleBvh};
 
 /// The nearest hit found so far, before its surface is worked out.
 #[derive(Clone, Copy)]
-enum Candidate {
+pub(super) enum Candidate {
     Plane(u32, f32),
     Sphere(u32, f32),
     /// Instance, triangle, hit and vertices in the instance's object space — or in world space
@@ -22,17 +22,17 @@ enum Candidate {
 
 /// The running nearest hit, with the tie rule: at equal `t`, the lower key wins, and planes
 /// (which carry no key) win over everything else.
-struct Nearest {
-    t: f32,
+pub(super) struct Nearest {
+    pub(super) t: f32,
     /// (top-level primitive, triangle) of the current candidate; `None` for a plane or nothing.
-    key: Option<(u32, u32)>,
-    candidate: Option<Candidate>,
+    pub(super) key: Option<(u32, u32)>,
+    pub(super) candidate: Option<Candidate>,
 }
 
 impl Nearest {
     /// Takes a hit at `t` with `key` if it is nearer, or as near and first in order.
     #[inline]
-    fn offer(&mut self, t: f32, key: (u32, u32), candidate: Candidate) -> bool {
+    pub(super) fn offer(&mut self, t: f32, key: (u32, u32), candidate: Candidate) -> bool {
         let better = t < self.t || (t == self.t && self.key.is_some_and(|k| key < k));
         if better {
             self.t = t;
@@ -70,7 +70,7 @@ fn closest_packed(
 /// `t_max` moved up by one ulp, so that shape tests (which want `t < t_max`) report a hit at
 /// exactly `t_max` too, for the tie rule to judge.
 #[inline]
-fn inclusive(t_max: f32) -> f32 {
+pub(super) fn inclusive(t_max: f32) -> f32 {
     if t_max < f32::INFINITY {
         t_max.next_up()
     } else {
@@ -81,7 +81,7 @@ fn inclusive(t_max: f32) -> f32 {
 /// The sphere's hit in `(0, t_max)` for a ray that may be leaving it (see [`crate::spawn`]):
 /// none when leaving outwards, only the far side when leaving inwards.
 #[inline]
-fn sphere_hit(
+pub(super) fn sphere_hit(
     sphere: &crate::shape::Sphere,
     ray: &Ray,
     t_max: f32,
@@ -264,7 +264,7 @@ impl Scene {
 
     /// The tie key of triangle `tri` of instance `k`: instances after the spheres, in order.
     #[inline]
-    fn triangle_key(&self, k: u32, tri: u32) -> (u32, u32) {
+    pub(super) fn triangle_key(&self, k: u32, tri: u32) -> (u32, u32) {
         (self.spheres.len() as u32 + k, tri)
     }
 
@@ -364,7 +364,7 @@ impl Scene {
         }
     }
 
-    fn surface(&self, ray: &Ray, candidate: Candidate) -> SurfaceHit {
+    pub(super) fn surface(&self, ray: &Ray, candidate: Candidate) -> SurfaceHit {
         match candidate {
             Candidate::Plane(i, t) => {
                 let (plane, tag) = &self.planes[i as usize];
