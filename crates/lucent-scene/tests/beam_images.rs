@@ -5,6 +5,7 @@
 use lucent::film::Film;
 use lucent::film::filter::Filter;
 use lucent::film::splat::FilterSampling;
+use lucent::integrator::{Integrator, Whitted};
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent_scene::{LoadOptions, SceneFile, Spanned};
 use std::path::{Path, PathBuf};
@@ -65,6 +66,28 @@ fn every_example_renders_the_same_with_and_without_beams() {
         let name = path.display().to_string();
         let on = film(&loaded.scene, &loaded.settings, true);
         let off = film(&loaded.scene, &loaded.settings, false);
+        assert_same(&on, &off, &name);
+    }
+}
+
+#[test]
+fn every_example_renders_the_same_under_whitted_with_and_without_beams() {
+    // Under Whitted a beam also brings packets of camera rays and shadow beams towards point
+    // lights (transmissive blockers traced again from the roots): every example, whatever
+    // its own integrator.
+    for path in examples() {
+        let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
+        file.desc.image.width = Spanned::new(0..0, 61);
+        file.desc.image.height = Spanned::new(0..0, 40);
+        let loaded = file.build().unwrap();
+        let settings = RenderSettings {
+            integrator: Integrator::Whitted(Whitted::default()),
+            spp: 2,
+            ..loaded.settings
+        };
+        let name = path.display().to_string();
+        let on = film(&loaded.scene, &settings, true);
+        let off = film(&loaded.scene, &settings, false);
         assert_same(&on, &off, &name);
     }
 }
