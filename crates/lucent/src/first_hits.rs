@@ -11,7 +11,6 @@ use crate::integrator::RayStats;
 use crate::light::Light;
 use crate::scene::{Beam, Scene};
 use crate::shape::SurfaceHit;
-use crate::spawn::spawn_ray;
 use lucent_accel::wide_bvh::PACKET;
 use lucent_accel::{Aabb, Ray};
 
@@ -39,32 +38,32 @@ pub(crate) fn first_hits(
         hits.extend_from_slice(&found[..packet.len()]);
     }
     let shadows = if shadows {
+        let origins = hits.iter().flatten().fold(Aabb::EMPTY, |b, hit| {
+            let m = spawn_margin(hit);
+            b.union(Aabb::new(hit.point - m, hit.point + m))
+        });
         scene
             .lights
             .iter()
-            .map(|light| {
-                let position = match light {
-                    Light::Point(p) => p.position,
-                    Light::Spot(s) => s.point.position,
-                    Light::Directional(_) => return None,
-                };
-                // The origins the integrator's shadow rays will have: from each hit, towards
-                // the light as the light itself says (`illuminate`), off the surface by
-                // `spawn_ray`. Hits the light does not reach just widen the box.
-                let origins = hits.iter().flatten().fold(Aabb::EMPTY, |b, hit| {
-                    match light.illuminate(hit.point) {
-                        Some(l) => {
-                            let o = spawn_ray(hit, l.to_light).0.origin;
-                            b.union(Aabb::new(o, o))
-                        }
-                        None => b,
-                    }
-                });
-                scene.shadow_beam(position, &origins)
+            .map(|light| match light {
+                Light::Point(p) => scene.shadow_beam(p.position, &origins),
+                Light::Spot(s) => scene.shadow_beam(s.point.position, &origins),
+                Light::Directional(_) => None,
             })
             .collect()
     } else {
         Vec::new()
     };
     FirstHits { hits, shadows }
+}
+
+/// How far [`crate::spawn::spawn_ray`] may move a ray's origin from `hit`'s point, per axis,
+/// in any direction: the error bound projected on a unit normal (at most its 1-norm), then at
+/// most 256 ulps of the coordinate (under `2⁻²³ · 2 · 256 · |p|`) or `2⁻¹⁶` near zero —
+/// doubled. A box of the hits widened by it holds every shadow ray's origin, whichever light
+/// it heads for, without spawning them (which cost an eighth of a render).
+fn spawn_margin(hit: &SurfaceHit) -> glam::Vec3 {
+    let moved = hit.error.x.abs() + hit.error.y.abs() + hit.error.z.abs();
+    let size = hit.point.abs().max_element() + moved;
+    glam::Vec3::splat(2.0 * (moved + size * 6.2e-5 + 1.0 / 65536.0))
 }

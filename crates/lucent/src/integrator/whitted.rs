@@ -119,8 +119,8 @@ impl Whitted {
     /// [`Scene::intersect`] finds it; its traversal counted by the driver), with `shadows[j]`
     /// the shadow beam of light `j` over the shadow rays from this hit and its neighbours:
     /// the same value. Each shadow ray of the camera hit goes through its light's beam; one
-    /// that meets a transmissive blocker is traced again from the roots, since the product of
-    /// its `kt` factors depends on the order blockers are met in.
+    /// that meets more than two transmissive blockers is traced again from the roots, since
+    /// the product of their `kt` factors depends on the order they are met in.
     pub fn radiance_from_hit(
         &self,
         scene: &Scene,
@@ -329,28 +329,40 @@ impl Whitted {
         stats.shadow += 1;
         let (ray, from) = spawn_ray(hit, to_light);
         if let Some(beam) = beam {
-            // Order-free answers only: none blocks (white), or an opaque one does (black,
-            // whichever comes first from the roots); a transmissive one needs the root order.
-            let mut transmissive = false;
-            let blocked = scene.occlusion_in(
+            // The beam meets the same blockers in another order, so only order-free answers
+            // are taken from it: an opaque blocker (black, whichever comes first), or at most
+            // two transmissive ones (`1·a·b = 1·b·a` exactly, float products commuting). A
+            // third needs the roots' order: the shadow ray is traced again from them.
+            let (mut factors, mut met) = ([Rgb::WHITE; 2], 0);
+            let mut opaque = false;
+            let stopped = scene.occlusion_in(
                 beam,
                 &ray,
                 distance,
                 Some(from),
                 &mut stats.traversal,
-                |material, _| {
+                |material, crossings| {
                     let m = &scene.materials[material as usize];
                     if !m.ke.is_black() {
                         return false;
                     }
-                    transmissive = !m.kt.is_black();
-                    true
+                    if m.kt.is_black() {
+                        opaque = true;
+                        return true;
+                    }
+                    let Some(f) = factors.get_mut(met) else {
+                        return true;
+                    };
+                    *f = m.kt.powi(crossings as i32);
+                    met += 1;
+                    false
                 },
             );
-            match (blocked, transmissive) {
-                (false, _) => return Rgb::WHITE,
-                (true, false) => return Rgb::BLACK,
-                (true, true) => {}
+            if opaque {
+                return Rgb::BLACK;
+            }
+            if !stopped {
+                return factors[..met].iter().fold(Rgb::WHITE, |s, &f| s * f);
             }
         }
         let mut s = Rgb::WHITE;
