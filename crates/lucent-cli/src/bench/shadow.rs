@@ -91,8 +91,11 @@ fn groups(scene: &Scene, tile: u32) -> Vec<Group> {
                         };
                         let offset = light - hit.point;
                         let distance = offset.length();
+                        // Not at the light (nor NaN), and the light in front of the surface.
                         let to_light = offset / distance;
-                        if !(distance > 0.0) || ng.dot(to_light) <= 0.0 {
+                        if distance.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+                            || ng.dot(to_light) <= 0.0
+                        {
                             continue;
                         }
                         let (shadow, from) = spawn_ray(hit, to_light);
