@@ -75,17 +75,22 @@ fn every_example_renders_the_same_under_whitted_with_and_without_beams() {
     // Under Whitted a beam also brings packets of camera rays and shadow beams towards point
     // lights (transmissive blockers traced again from the roots): every example, whatever
     // its own integrator.
-    for path in examples() {
+    // Over the wide BVH (packed meshes, cuts, packets) and the binary one (none of those).
+    for (path, accel) in examples()
+        .into_iter()
+        .flat_map(|p| ["wide", "bvh"].map(|a| (p.clone(), a)))
+    {
         let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
         file.desc.image.width = Spanned::new(0..0, 61);
         file.desc.image.height = Spanned::new(0..0, 40);
+        file.desc.render.accelerator = Spanned::new(0..0, accel.to_string());
         let loaded = file.build().unwrap();
         let settings = RenderSettings {
             integrator: Integrator::Whitted(Whitted::default()),
             spp: 2,
             ..loaded.settings
         };
-        let name = path.display().to_string();
+        let name = format!("{} ({accel})", path.display());
         let on = film(&loaded.scene, &settings, true);
         let off = film(&loaded.scene, &settings, false);
         assert_same(&on, &off, &name);

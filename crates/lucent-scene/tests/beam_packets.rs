@@ -24,10 +24,15 @@ fn every_example_hits_the_same_in_packets() {
     const TILE: u32 = 8;
     // 61 wide: the last tile of each row is 5 pixels, a partial packet.
     let (w, h) = (61, 40);
-    for path in examples() {
+    // Over the wide BVH (packets through cuts) and the binary one (ray by ray).
+    for (path, accel) in examples()
+        .into_iter()
+        .flat_map(|p| ["wide", "bvh"].map(|a| (p.clone(), a)))
+    {
         let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
         file.desc.image.width = Spanned::new(0..0, w);
         file.desc.image.height = Spanned::new(0..0, h);
+        file.desc.render.accelerator = Spanned::new(0..0, accel.to_string());
         let scene = file.build().unwrap().scene;
         let mut stats = TraversalStats::default();
         for y0 in (0..h).step_by(TILE as usize) {

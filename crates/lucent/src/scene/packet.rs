@@ -25,9 +25,13 @@ impl Scene {
         stats: &mut TraversalStats,
     ) -> [Option<SurfaceHit>; PACKET] {
         let rays = &rays[..rays.len().min(PACKET)];
+        // Spheres, and meshes with a packed tree and their cut: anything else goes ray by ray.
         let packable = beam.top.as_ref().filter(|top| {
             top.iter()
-                .all(|(p, cut)| self.packed_mesh(*p).is_some() == cut.is_some())
+                .all(|(p, cut)| match self.primitives[*p as usize] {
+                    Primitive::Sphere(_) => true,
+                    _ => self.packed_mesh(*p).is_some() && cut.is_some(),
+                })
         });
         let Some(touched) = packable else {
             return std::array::from_fn(|i| {
@@ -89,6 +93,7 @@ impl Scene {
                         }
                     }
                 }
+                // Not packable: traced ray by ray above.
                 (_, None) => {}
             }
         }
