@@ -80,8 +80,9 @@ pub struct RenderSettings {
     /// Stop after this long even if not every pixel has `spp` samples (uniform sampling).
     pub time_limit: Option<Duration>,
     /// Trace each tile's camera rays as one beam ([`crate::scene::Beam`]) when the camera is a
-    /// pinhole: the same image, faster. Adaptive sampling, the photon mapper and the debug
-    /// views trace per pixel whatever this says.
+    /// pinhole — under Whitted in packets, with shadow beams for their hits' shadow rays
+    /// towards point lights: the same image, faster. Adaptive sampling, the photon mapper and
+    /// the debug views trace per pixel whatever this says.
     pub beam: bool,
 }
 
