@@ -20,6 +20,10 @@ use glam::Vec3;
 /// How far (in radians, roughly) a box may lie outside a side plane and still count as touched.
 pub const ANGULAR_SLACK: f32 = 1e-4;
 
+/// The radius of the ball around a shadow beam's light that its cone holds, relative to the
+/// scene's coordinates there (see [`Frustum::from_point_over`]).
+pub const LIGHT_SLACK: f32 = 1e-5;
+
 /// The cone of rays `origin + t·d`, `t > 0`, for `d` in the convex hull of four directions.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frustum {
@@ -58,6 +62,66 @@ impl Frustum {
             normals,
             corners: unit,
         })
+    }
+
+    /// A beam from `point` (a point light) over every point of `targets` (a box of shadow
+    /// rays' origins, away from `point`), holding each segment between `point` and a point of
+    /// the box — the shadow rays towards the light, whichever end they start from. `None`
+    /// when the box is empty, not finite, or not wholly on one side of a plane through `point`.
+    ///
+    /// A shadow ray's origin and direction are rounded, so its line passes the light a little
+    /// to the side; near the apex the angular slack covers nearly nothing. So the apex is moved
+    /// back from `point`, along the beam's axis, by a twentieth of the nearest target's depth,
+    /// and the cone is widened to hold a ball around `point` of [`LIGHT_SLACK`] times the
+    /// scene's scale there (some hundred times a shadow ray's rounding).
+    pub fn from_point_over(point: Vec3, targets: &Aabb) -> Option<Self> {
+        if targets.is_empty() || !targets.min.is_finite() || !targets.max.is_finite() {
+            return None;
+        }
+        if !point.is_finite() {
+            return None;
+        }
+        let axis = (targets.center() - point).try_normalize()?;
+        let u = axis.any_orthonormal_vector();
+        let v = axis.cross(u);
+        let corners = box_corners(targets);
+        let near = corners
+            .iter()
+            .map(|c| (*c - point).dot(axis))
+            .fold(f32::INFINITY, f32::min);
+        let reach = corners
+            .iter()
+            .map(|c| (*c - point).abs().max_element())
+            .fold(point.abs().max_element(), f32::max);
+        if near.is_nan() || near <= reach * LIGHT_SLACK * 4.0 {
+            return None;
+        }
+        let back = near / 20.0;
+        let apex = point - axis * back;
+        // The light's ball, as slopes from the apex: its radius over the apex's distance.
+        let ball = 2.0 * reach * LIGHT_SLACK / back;
+        let (mut lo, mut hi) = (glam::Vec2::splat(-ball), glam::Vec2::splat(ball));
+        for c in corners {
+            let d = c - apex;
+            let slope = glam::Vec2::new(d.dot(u), d.dot(v)) / d.dot(axis);
+            lo = lo.min(slope);
+            hi = hi.max(slope);
+        }
+        let dir = |x: f32, y: f32| axis + x * u + y * v;
+        Self::new(
+            apex,
+            [
+                dir(lo.x, lo.y),
+                dir(hi.x, lo.y),
+                dir(hi.x, hi.y),
+                dir(lo.x, hi.y),
+            ],
+        )
+    }
+
+    /// The unit inward normals of the four side planes, through [`Frustum::origin`].
+    pub(crate) fn normals(&self) -> [Vec3; 4] {
+        self.normals
     }
 
     /// The common origin of the beam's rays.
@@ -105,6 +169,18 @@ impl Frustum {
             )
         })
     }
+}
+
+/// The eight corners of `b`.
+fn box_corners(b: &Aabb) -> [Vec3; 8] {
+    std::array::from_fn(|i| {
+        let pick = |bit: usize, lo: f32, hi: f32| if i >> bit & 1 == 0 { lo } else { hi };
+        Vec3::new(
+            pick(0, b.min.x, b.max.x),
+            pick(1, b.min.y, b.max.y),
+            pick(2, b.min.z, b.max.z),
+        )
+    })
 }
 
 #[cfg(test)]
@@ -165,6 +241,24 @@ mod tests {
             Vec3::new(-0.1, 0.1, -1.0),
         ];
         assert!(Frustum::new(Vec3::ZERO, bow_tie).is_none());
+    }
+
+    #[test]
+    fn a_shadow_beam_holds_its_targets_and_the_light_but_not_what_lies_beside() {
+        let light = Vec3::new(0.0, 10.0, 0.0);
+        let targets = Aabb::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.1, 1.0));
+        let f = Frustum::from_point_over(light, &targets).unwrap();
+        assert!(f.touches(&targets));
+        assert!(f.touches(&cube(light, 1e-3)), "the light itself");
+        assert!(f.touches(&cube(Vec3::new(0.0, 5.0, 0.0), 0.01)), "between");
+        assert!(!f.touches(&cube(Vec3::new(4.0, 5.0, 0.0), 0.5)), "beside");
+        assert!(
+            !f.touches(&cube(Vec3::new(0.0, 12.0, 0.0), 0.05)),
+            "behind the light"
+        );
+        // A light inside the box, or touching it: no beam.
+        assert!(Frustum::from_point_over(Vec3::new(0.0, 0.05, 0.0), &targets).is_none());
+        assert!(Frustum::from_point_over(light, &Aabb::EMPTY).is_none());
     }
 
     #[test]

@@ -284,8 +284,9 @@ pub struct RenderArgs {
     /// Render threads; 0 uses every core.
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u16).range(0..=1024))]
     pub threads: u16,
-    /// Trace each tile's camera rays as one beam (pinhole cameras): `on` (the default, faster)
-    /// or `off` (every ray from the root of the accelerators). The image is the same.
+    /// Trace each tile's camera rays as one beam (pinhole cameras; under Whitted in packets of
+    /// eight, with shadow beams towards point lights): `on` (the default, faster) or `off`
+    /// (every ray from the root of the accelerators). The image is the same.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub beam: OnOff,
     /// Render only shard I of N (tiles I, I+N, I+2N, …), as `I/N`; `auto/N` takes I from

@@ -2,24 +2,16 @@
 //! beams on and off, gives the same film bit for bit (stochastic integrators too, since the
 //! sampler is a pure function of pixel and sample).
 
+mod common;
+
+use common::examples;
 use lucent::film::Film;
 use lucent::film::filter::Filter;
 use lucent::film::splat::FilterSampling;
+use lucent::integrator::{Integrator, Whitted};
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent_scene::{LoadOptions, SceneFile, Spanned};
-use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
-
-fn examples() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
-    let mut found: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml" || e == "xml"))
-        .collect();
-    found.sort();
-    found
-}
 
 fn film(scene: &lucent::scene::Scene, settings: &RenderSettings, beam: bool) -> Film {
     let cancel = AtomicBool::new(false);
@@ -65,6 +57,33 @@ fn every_example_renders_the_same_with_and_without_beams() {
         let name = path.display().to_string();
         let on = film(&loaded.scene, &loaded.settings, true);
         let off = film(&loaded.scene, &loaded.settings, false);
+        assert_same(&on, &off, &name);
+    }
+}
+
+#[test]
+fn every_example_renders_the_same_under_whitted_with_and_without_beams() {
+    // Under Whitted a beam also brings packets of camera rays and shadow beams towards point
+    // lights (transmissive blockers traced again from the roots): every example, whatever
+    // its own integrator.
+    // Over the wide BVH (packed meshes, cuts, packets) and the binary one (none of those).
+    for (path, accel) in examples()
+        .into_iter()
+        .flat_map(|p| ["wide", "bvh"].map(|a| (p.clone(), a)))
+    {
+        let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
+        file.desc.image.width = Spanned::new(0..0, 61);
+        file.desc.image.height = Spanned::new(0..0, 40);
+        file.desc.render.accelerator = Spanned::new(0..0, accel.to_string());
+        let loaded = file.build().unwrap();
+        let settings = RenderSettings {
+            integrator: Integrator::Whitted(Whitted::default()),
+            spp: 2,
+            ..loaded.settings
+        };
+        let name = format!("{} ({accel})", path.display());
+        let on = film(&loaded.scene, &settings, true);
+        let off = film(&loaded.scene, &settings, false);
         assert_same(&on, &off, &name);
     }
 }

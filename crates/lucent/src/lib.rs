@@ -18,6 +18,7 @@ pub mod bsdf;
 pub mod camera;
 pub mod color;
 pub mod film;
+mod first_hits;
 pub mod integrator;
 pub mod light;
 pub mod material;

@@ -80,8 +80,9 @@ pub struct RenderSettings {
     /// Stop after this long even if not every pixel has `spp` samples (uniform sampling).
     pub time_limit: Option<Duration>,
     /// Trace each tile's camera rays as one beam ([`crate::scene::Beam`]) when the camera is a
-    /// pinhole: the same image, faster. Adaptive sampling, the photon mapper and the debug
-    /// views trace per pixel whatever this says.
+    /// pinhole — under Whitted in packets, with shadow beams for their hits' shadow rays
+    /// towards point lights: the same image, faster. Adaptive sampling, the photon mapper and
+    /// the debug views trace per pixel whatever this says.
     pub beam: bool,
 }
 
@@ -521,6 +522,22 @@ fn render_tile(
     let mut taken = 0;
     let width = u64::from(scene.camera.width());
     let beam = tile_beam(scene, settings, tile);
+    if let (Some(beam), Integrator::Whitted(whitted)) = (&beam, &settings.integrator) {
+        let tile_beam = TileBeam {
+            beam,
+            whitted,
+            filter,
+        };
+        return render_tile_first_hits(
+            scene,
+            settings,
+            &tile_beam,
+            tile,
+            (upto, deadline),
+            part,
+            cancel,
+        );
+    }
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -548,6 +565,72 @@ fn render_tile(
                 part.add_sample(px, py, finite.then_some(value), weight);
                 taken += 1;
             }
+        }
+    }
+    (stats, taken)
+}
+
+/// A tile's beam under the Whitted integrator, with what its samples need.
+struct TileBeam<'a> {
+    beam: &'a Beam,
+    whitted: &'a crate::integrator::Whitted,
+    filter: &'a FilterSampler,
+}
+
+/// Samples traced per first pass: a tile of 16×16 at 4 samples per pixel, so that the
+/// pass's hits stay small however many samples a pass takes.
+const FIRST_PASS: usize = 1024;
+
+/// [`render_tile`] under the Whitted integrator with a beam: the samples in chunks, each
+/// chunk's camera hits found first, in packets, with the shadow beams over them
+/// ([`crate::first_hits`]), then each sample shaded per ray from its hit. The same samples,
+/// values and stopping points as `render_tile`.
+fn render_tile_first_hits(
+    scene: &Scene,
+    settings: &RenderSettings,
+    tb: &TileBeam,
+    tile: &Tile,
+    (upto, deadline): (u32, Option<Instant>),
+    part: &mut Film,
+    cancel: &AtomicBool,
+) -> (RayStats, u64) {
+    let mut stats = RayStats::default();
+    let mut taken = 0;
+    let width = u64::from(scene.camera.width());
+    // (pixel in the tile, first sample of its pixel, ray, film weight), in render_tile's order.
+    let mut todo = Vec::new();
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            let pixel = u64::from(y) * width + u64::from(x);
+            let (px, py) = (x - tile.x0, y - tile.y0);
+            for s in part.samples(px, py)..upto {
+                let mut sampler = Sampler::new(settings.seed, pixel, s);
+                let (ray, weight) =
+                    camera_sample(scene, settings, tb.filter, (x, y), pixel, s, &mut sampler);
+                let first = s == part.samples(px, py);
+                todo.push(((px, py), first, ray, weight));
+            }
+        }
+    }
+    let shadows = tb.whitted.shadows;
+    for chunk in todo.chunks(FIRST_PASS) {
+        let rays: Vec<Ray> = chunk.iter().map(|e| e.2).collect();
+        let first = crate::first_hits::first_hits(scene, tb.beam, &rays, shadows, &mut stats);
+        for (&((px, py), first_of_pixel, ray, weight), hit) in chunk.iter().zip(first.hits) {
+            if first_of_pixel && deadline.is_some_and(|d| Instant::now() >= d) {
+                return (stats, taken);
+            }
+            if cancel.load(Ordering::Relaxed) {
+                return (stats, taken);
+            }
+            stats.camera += 1;
+            let value = tb
+                .whitted
+                .radiance_from_hit(scene, &first.shadows, &ray, hit, &mut stats);
+            let finite = value.is_finite() && weight.is_finite();
+            stats.nonfinite += u64::from(!finite);
+            part.add_sample(px, py, finite.then_some(value), weight);
+            taken += 1;
         }
     }
     (stats, taken)

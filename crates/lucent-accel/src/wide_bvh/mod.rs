@@ -9,12 +9,14 @@
 mod collapse;
 mod cut;
 mod lanes;
+mod packet;
 mod simd;
 mod traverse;
 mod triangles;
 
-pub use cut::Cut;
+pub use cut::{BUDGET as CUT_BUDGET, Cut};
 pub use lanes::{LANES, Lanes};
+pub use packet::PACKET;
 pub use triangles::{PackedHit, WideTriangleBvh};
 
 use crate::bvh::BuildOptions;

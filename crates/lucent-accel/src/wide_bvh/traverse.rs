@@ -13,7 +13,7 @@ use arrayvec::ArrayVec;
 /// Stack entries: each level pushes at most seven siblings, and the binary tree's depth is
 /// bounded (`BuildOptions::max_sah_depth` plus log2 of the primitive count), so a wide tree is
 /// at most about 80 levels deep. (An `ArrayVec` is not zeroed on creation, unlike an array.)
-const STACK_SIZE: usize = 7 * 80;
+pub(super) const STACK_SIZE: usize = 7 * 80;
 
 /// A ray prepared for eight-box tests.
 pub(crate) struct RayPre {
@@ -96,6 +96,10 @@ impl RayPre {
         (mask & node.used_mask(), Lanes(near))
     }
 }
+
+/// Marks a virtual node of a beam's cut on the any-hit stack (tree nodes number far fewer
+/// than 2³¹).
+const IN_CUT: u32 = 1 << 31;
 
 /// A child reference on the traversal stack: (child, count, entry distance).
 type Entry = (u32, u32, f32);
@@ -237,6 +241,10 @@ impl WideBvh {
     }
 
     /// Any-hit traversal; `visit(first, count, stats)` returns `true` to stop.
+    ///
+    /// `entry` as for [`WideBvh::closest_walk`]: empty for the root, or a beam's virtual
+    /// nodes. The leaves are visited in another order from a cut than from the root, but the
+    /// same ones that hold a blocker (the cut is conservative).
     #[inline(always)]
     pub(crate) fn any_walk<S: Simd, L: AnyLeaf>(
         &self,
@@ -245,6 +253,7 @@ impl WideBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         leaf: &mut L,
+        entry: &[NodeW],
     ) -> bool {
         if let Some((first, count)) = self.root_leaf {
             return self.bounds.hit(ray, t_max).is_some() && leaf.visit(first, count, stats);
@@ -253,19 +262,25 @@ impl WideBvh {
             return false;
         }
         let pre = RayPre::new(ray);
+        // Node indices, with IN_CUT set for a virtual node of `entry`.
         let mut stack: ArrayVec<u32, STACK_SIZE> = ArrayVec::new();
-        stack.push(0);
+        stack.push(if entry.is_empty() { 0 } else { IN_CUT });
         let mut visited = 0u64;
         let mut blocked = false;
         'walk: while let Some(top) = stack.pop() {
             visited += 1;
-            let node = &self.nodes[top as usize];
+            let node = if top & IN_CUT == 0 {
+                &self.nodes[top as usize]
+            } else {
+                &entry[(top & !IN_CUT) as usize]
+            };
             let (mut mask, _) = pre.enter(s, node, t_max);
             while mask != 0 {
                 let i = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
                 match node.count[i] {
                     0 => stack.push(node.child[i]),
+                    VIRTUAL => stack.push(node.child[i] | IN_CUT),
                     EMPTY => {}
                     count => {
                         if leaf.visit(node.child[i], count, stats) {
@@ -314,6 +329,7 @@ impl WideBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         mut leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32) -> bool,
@@ -326,7 +342,7 @@ impl WideBvh {
                     leaf(p)
                 })
         });
-        self.any_walk(s, ray, t_max, stats, &mut visit)
+        self.any_walk(s, ray, t_max, stats, &mut visit, entry)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -380,11 +396,38 @@ impl WideBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32) -> bool,
     {
-        self.any_generic(s, ray, t_max, stats, leaf)
+        self.any_generic(s, ray, t_max, stats, leaf, entry)
+    }
+
+    /// [`Accelerator::any_hit`] for the rays of a beam, starting from its cut: the same
+    /// answer, and the same primitives offered to `leaf` when it never says stop (in another
+    /// order), for every ray inside the beam the cut was made for.
+    pub fn any_hit_in<F>(
+        &self,
+        cut: &Cut,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
+        if cut.misses {
+            return false;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = Avx::detect() {
+            // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &cut.nodes) };
+        }
+        self.any_generic(Sse, ray, t_max, stats, leaf, &cut.nodes)
     }
 }
 
@@ -435,8 +478,8 @@ impl Accelerator for WideBvh {
         if let Some(avx) = Avx::detect() {
             // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf) };
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &[]) };
         }
-        self.any_generic(Sse, ray, t_max, stats, leaf)
+        self.any_generic(Sse, ray, t_max, stats, leaf, &[])
     }
 }

@@ -18,7 +18,7 @@ use glam::Vec3;
 /// that a pack spans five of them, not six.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-struct Pack {
+pub(super) struct Pack {
     v: [[Lanes; 3]; 3],
     ids: [u32; LANES],
 }
@@ -27,8 +27,8 @@ struct Pack {
 #[derive(Clone, Debug, Default)]
 pub struct WideTriangleBvh {
     /// Leaves refer to packs: (first pack, number of packs).
-    bvh: WideBvh,
-    packs: Vec<Pack>,
+    pub(super) bvh: WideBvh,
+    pub(super) packs: Vec<Pack>,
 }
 
 /// Triangles per leaf: one pack. (Measured on the bunny and teapot: leaves of 8 beat 2, 4, 6,
@@ -123,6 +123,11 @@ impl WideTriangleBvh {
         self.bvh.cut(frustum)
     }
 
+    /// [`WideTriangleBvh::cut`] with at most `budget` entries (see [`WideBvh::cut_within`]).
+    pub fn cut_within(&self, frustum: &Frustum, budget: usize) -> Cut {
+        self.bvh.cut_within(frustum, budget)
+    }
+
     /// [`WideTriangleBvh::closest_hit`] for a ray of the beam that `cut` was made for: the
     /// same hit, from fewer nodes.
     pub fn closest_hit_in(
@@ -155,9 +160,35 @@ impl WideTriangleBvh {
         if let Some(avx) = Avx::detect() {
             // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf) };
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &[]) };
         }
-        self.any(Sse, ray, t_max, stats, leaf)
+        self.any(Sse, ray, t_max, stats, leaf, &[])
+    }
+
+    /// [`WideTriangleBvh::any_hit`] for a ray of the beam that `cut` was made for (a shadow
+    /// beam, see [`Frustum::from_point_over`]): the same answer, and the same triangles
+    /// offered to `leaf` when it never says stop, though in another order.
+    pub fn any_hit_in<F>(
+        &self,
+        cut: &Cut,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
+        if cut.misses {
+            return false;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx) = Avx::detect() {
+            // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &cut.nodes) };
+        }
+        self.any(Sse, ray, t_max, stats, leaf, &cut.nodes)
     }
 
     /// [`WideTriangleBvh::closest_hit`] on the baseline instruction set (two SSE registers per
@@ -183,7 +214,7 @@ impl WideTriangleBvh {
         stats: &mut TraversalStats,
         leaf: F,
     ) -> bool {
-        self.any(Sse, ray, t_max, stats, leaf)
+        self.any(Sse, ray, t_max, stats, leaf, &[])
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -209,11 +240,12 @@ impl WideTriangleBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32) -> bool,
     {
-        self.any(s, ray, t_max, stats, leaf)
+        self.any(s, ray, t_max, stats, leaf, entry)
     }
 
     #[inline(always)]
@@ -246,6 +278,7 @@ impl WideTriangleBvh {
         t_max: f32,
         stats: &mut TraversalStats,
         leaf: F,
+        entry: &[NodeW],
     ) -> bool
     where
         F: FnMut(u32) -> bool,
@@ -258,7 +291,7 @@ impl WideTriangleBvh {
             limit: t_max.next_down(),
             leaf,
         };
-        self.bvh.any_walk(s, ray, t_max, stats, &mut leaves)
+        self.bvh.any_walk(s, ray, t_max, stats, &mut leaves, entry)
     }
 }
 
@@ -266,12 +299,12 @@ impl WideTriangleBvh {
 pub type PackedHit = (u32, TriangleHit, [Vec3; 3]);
 
 /// The closest-hit leaf test: the nearest hit over packs, ties to the lower triangle index.
-struct NearestInPacks<'a, S> {
-    s: S,
-    packs: &'a [Pack],
-    pre: PackRay,
-    skip: Option<u32>,
-    best: Option<PackedHit>,
+pub(super) struct NearestInPacks<'a, S> {
+    pub(super) s: S,
+    pub(super) packs: &'a [Pack],
+    pub(super) pre: PackRay,
+    pub(super) skip: Option<u32>,
+    pub(super) best: Option<PackedHit>,
 }
 
 impl<S: Simd> ClosestLeaf for NearestInPacks<'_, S> {
@@ -348,13 +381,13 @@ impl<S: Simd, F: FnMut(u32) -> bool> AnyLeaf for BlockersInPacks<'_, S, F> {
 }
 
 /// The ray's origin and shear.
-struct PackRay {
+pub(super) struct PackRay {
     origin: [f32; 3],
     shear: Shear,
 }
 
 impl PackRay {
-    fn new(ray: &Ray) -> Self {
+    pub(super) fn new(ray: &Ray) -> Self {
         Self {
             origin: ray.origin.to_array(),
             shear: Shear::new(ray),

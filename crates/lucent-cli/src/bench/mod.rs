@@ -13,6 +13,7 @@ mod peers;
 mod rays;
 mod report;
 mod sampling;
+mod shadow;
 
 use crate::cli::BenchArgs;
 use anyhow::{Context, bail};
@@ -97,18 +98,29 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
             if kind == AccelKind::Wide {
                 for tile in beam::TILES {
                     for &t in &threads {
-                        let (per_pixel, beam) = beam::measure(&scene, tile, t)?;
+                        let (per_pixel, beam, packets) = beam::measure(&scene, tile, t)?;
                         eprintln!(
-                            "  beam {tile}×{tile}/{t}t: per-pixel {:.3}, beam {:.3} Mrays/s",
+                            "  beam {tile}×{tile}/{t}t: per-pixel {:.3}, beam {:.3}, packets {:.3} Mrays/s",
                             per_pixel.mrays(),
-                            beam.mrays()
+                            beam.mrays(),
+                            packets.mrays()
                         );
+                        let shadow = shadow::measure(&scene, tile, t)?;
+                        if let Some((p, b)) = &shadow {
+                            eprintln!(
+                                "  shadow beam {tile}×{tile}/{t}t: per-pixel {:.3}, beam {:.3} Mrays/s",
+                                p.mrays(),
+                                b.mrays()
+                            );
+                        }
                         beam_rows.push(beam::BeamRow {
                             scene: name.clone(),
                             tile,
                             threads: t,
                             per_pixel,
                             beam,
+                            packets,
+                            shadow,
                         });
                     }
                 }

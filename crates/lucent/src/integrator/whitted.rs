@@ -76,6 +76,10 @@ struct Trace<'a, R> {
     scene: &'a Scene,
     /// The beam the camera ray belongs to, if any.
     beam: Option<&'a Beam>,
+    /// The camera ray's hit, when the driver found it already (taken by the camera ray).
+    primary: Option<Option<SurfaceHit>>,
+    /// Per light, the shadow beam of the camera hits' shadow rays towards it, if any.
+    shadows: &'a [Option<Beam>],
     budget: u32,
     stats: &'a mut RayStats,
     record: &'a mut R,
@@ -111,6 +115,36 @@ impl Whitted {
         self.radiance_with(scene, None, ray, stats, record)
     }
 
+    /// [`Whitted::radiance`] for a camera ray whose hit the driver found already (`hit`, as
+    /// [`Scene::intersect`] finds it; its traversal counted by the driver), with `shadows[j]`
+    /// the shadow beam of light `j` over the shadow rays from this hit and its neighbours:
+    /// the same value. Each shadow ray of the camera hit goes through its light's beam; one
+    /// that meets more than two transmissive blockers is traced again from the roots, since
+    /// the product of their `kt` factors depends on the order they are met in.
+    pub fn radiance_from_hit(
+        &self,
+        scene: &Scene,
+        shadows: &[Option<Beam>],
+        ray: &Ray,
+        hit: Option<SurfaceHit>,
+        stats: &mut RayStats,
+    ) -> Rgb {
+        let mut t = Trace {
+            scene,
+            beam: None,
+            primary: Some(hit),
+            shadows,
+            budget: MAX_SECONDARY_RAYS,
+            stats,
+            record: &mut NoRecord,
+        };
+        let path = Path {
+            depth: 0,
+            weight: Rgb::WHITE,
+        };
+        self.trace(&mut t, RayKind::Camera, ray, None, &path)
+    }
+
     fn radiance_with<R: Recorder>(
         &self,
         scene: &Scene,
@@ -122,6 +156,8 @@ impl Whitted {
         let mut t = Trace {
             scene,
             beam,
+            primary: None,
+            shadows: &[],
             budget: MAX_SECONDARY_RAYS,
             stats,
             record,
@@ -142,8 +178,9 @@ impl Whitted {
         path: &Path,
     ) -> Rgb {
         t.record.begin(kind, ray, path.weight);
-        let hit = match t.beam {
-            Some(beam) if kind == RayKind::Camera => {
+        let hit = match (t.primary.take(), t.beam) {
+            (Some(hit), _) if kind == RayKind::Camera => hit,
+            (_, Some(beam)) if kind == RayKind::Camera => {
                 t.scene.intersect_in(beam, ray, &mut t.stats.traversal)
             }
             _ => t.scene.intersect_from(ray, from, &mut t.stats.traversal),
@@ -195,8 +232,11 @@ impl Whitted {
             if n_dot_l <= 0.0 || ng.dot(l.to_light) <= 0.0 {
                 continue;
             }
+            // Only the camera hit's shadow rays lie in the light's shadow beam.
+            let beam = t.shadows.get(j).and_then(Option::as_ref);
+            let beam = beam.filter(|_| path.depth == 0);
             let s = if self.shadows {
-                self.shadow(scene, hit, l.to_light, l.distance, t.stats)
+                self.shadow(scene, hit, (l.to_light, l.distance), beam, t.stats)
             } else {
                 Rgb::WHITE
             };
@@ -276,17 +316,55 @@ impl Whitted {
         })
     }
 
-    /// `S_j`: the share of a light that reaches the hit point, filtered by transmissive blockers.
+    /// `S_j`: the share of a light that reaches the hit point, filtered by transmissive blockers
+    /// (through `beam` when the shadow ray is one of its rays, see `radiance_from_hit`).
     fn shadow(
         &self,
         scene: &Scene,
         hit: &SurfaceHit,
-        to_light: Vec3,
-        distance: f32,
+        (to_light, distance): (Vec3, f32),
+        beam: Option<&Beam>,
         stats: &mut RayStats,
     ) -> Rgb {
         stats.shadow += 1;
         let (ray, from) = spawn_ray(hit, to_light);
+        if let Some(beam) = beam {
+            // The beam meets the same blockers in another order, so only order-free answers
+            // are taken from it: an opaque blocker (black, whichever comes first), or at most
+            // two transmissive ones (`1·a·b = 1·b·a` exactly, float products commuting). A
+            // third needs the roots' order: the shadow ray is traced again from them.
+            let (mut factors, mut met) = ([Rgb::WHITE; 2], 0);
+            let mut opaque = false;
+            let stopped = scene.occlusion_in(
+                beam,
+                &ray,
+                distance,
+                Some(from),
+                &mut stats.traversal,
+                |material, crossings| {
+                    let m = &scene.materials[material as usize];
+                    if !m.ke.is_black() {
+                        return false;
+                    }
+                    if m.kt.is_black() {
+                        opaque = true;
+                        return true;
+                    }
+                    let Some(f) = factors.get_mut(met) else {
+                        return true;
+                    };
+                    *f = m.kt.powi(crossings as i32);
+                    met += 1;
+                    false
+                },
+            );
+            if opaque {
+                return Rgb::BLACK;
+            }
+            if !stopped {
+                return factors[..met].iter().fold(Rgb::WHITE, |s, &f| s * f);
+            }
+        }
         let mut s = Rgb::WHITE;
         scene.occlusion(
             &ray,

@@ -18,6 +18,7 @@
 mod animation;
 mod beam;
 mod builder;
+mod packet;
 mod query;
 
 pub use beam::Beam;

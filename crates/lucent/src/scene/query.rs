@@ -12,7 +12,7 @@ use lucent_accel::{Accelerator, Cut, Ray, TraversalStats, WideTriangleBvh};
 
 /// The nearest hit found so far, before its surface is worked out.
 #[derive(Clone, Copy)]
-enum Candidate {
+pub(super) enum Candidate {
     Plane(u32, f32),
     Sphere(u32, f32),
     /// Instance, triangle, hit and vertices in the instance's object space — or in world space
@@ -22,17 +22,17 @@ enum Candidate {
 
 /// The running nearest hit, with the tie rule: at equal `t`, the lower key wins, and planes
 /// (which carry no key) win over everything else.
-struct Nearest {
-    t: f32,
+pub(super) struct Nearest {
+    pub(super) t: f32,
     /// (top-level primitive, triangle) of the current candidate; `None` for a plane or nothing.
-    key: Option<(u32, u32)>,
-    candidate: Option<Candidate>,
+    pub(super) key: Option<(u32, u32)>,
+    pub(super) candidate: Option<Candidate>,
 }
 
 impl Nearest {
     /// Takes a hit at `t` with `key` if it is nearer, or as near and first in order.
     #[inline]
-    fn offer(&mut self, t: f32, key: (u32, u32), candidate: Candidate) -> bool {
+    pub(super) fn offer(&mut self, t: f32, key: (u32, u32), candidate: Candidate) -> bool {
         let better = t < self.t || (t == self.t && self.key.is_some_and(|k| key < k));
         if better {
             self.t = t;
@@ -70,7 +70,7 @@ fn closest_packed(
 /// `t_max` moved up by one ulp, so that shape tests (which want `t < t_max`) report a hit at
 /// exactly `t_max` too, for the tie rule to judge.
 #[inline]
-fn inclusive(t_max: f32) -> f32 {
+pub(super) fn inclusive(t_max: f32) -> f32 {
     if t_max < f32::INFINITY {
         t_max.next_up()
     } else {
@@ -81,7 +81,7 @@ fn inclusive(t_max: f32) -> f32 {
 /// The sphere's hit in `(0, t_max)` for a ray that may be leaving it (see [`crate::spawn`]):
 /// none when leaving outwards, only the far side when leaving inwards.
 #[inline]
-fn sphere_hit(
+pub(super) fn sphere_hit(
     sphere: &crate::shape::Sphere,
     ray: &Ray,
     t_max: f32,
@@ -126,6 +126,7 @@ fn merged_skip(m: &super::Merged, from: Option<Leaving>) -> Option<u32> {
 /// space) in `(0, t_max)` until it returns `true`; returns whether it did.
 fn blockers_in<F>(
     entry: &super::MeshEntry,
+    cut: Option<&Cut>,
     local: &Ray,
     test: crate::shape::TriangleTest,
     t_max: f32,
@@ -141,7 +142,10 @@ where
                 .is_some()
                 && blocker(tri)
         }),
-        MeshAccel::Packed(packed) => packed.any_hit(local, t_max, stats, blocker),
+        MeshAccel::Packed(packed) => match cut {
+            Some(cut) => packed.any_hit_in(cut, local, t_max, stats, blocker),
+            None => packed.any_hit(local, t_max, stats, blocker),
+        },
         MeshAccel::Unused => false,
     }
 }
@@ -273,7 +277,7 @@ impl Scene {
     /// The tie key of triangle `tri` of instance `k`: instances after the spheres (whose key
     /// is `(sphere, 0)`), in order.
     #[inline]
-    fn triangle_key(&self, k: u32, tri: u32) -> (u32, u32) {
+    pub(super) fn triangle_key(&self, k: u32, tri: u32) -> (u32, u32) {
         (self.spheres.len() as u32 + k, tri)
     }
 
@@ -373,7 +377,7 @@ impl Scene {
         }
     }
 
-    fn surface(&self, ray: &Ray, candidate: Candidate) -> SurfaceHit {
+    pub(super) fn surface(&self, ray: &Ray, candidate: Candidate) -> SurfaceHit {
         match candidate {
             Candidate::Plane(i, t) => {
                 let (plane, tag) = &self.planes[i as usize];
@@ -503,13 +507,32 @@ impl Scene {
         t_max: f32,
         from: Option<Leaving>,
         stats: &mut TraversalStats,
+        blocker: F,
+    ) -> bool
+    where
+        F: FnMut(u32, u32) -> bool,
+    {
+        self.blockers(ray, t_max, from, None, stats, blocker)
+    }
+
+    /// [`Scene::occlusion`], tested against only what `beam` can reach when there is one
+    /// (see [`Scene::occlusion_in`]).
+    pub(super) fn blockers<F>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        from: Option<Leaving>,
+        beam: Option<&Beam>,
+        stats: &mut TraversalStats,
         mut blocker: F,
     ) -> bool
     where
         F: FnMut(u32, u32) -> bool,
     {
         for (i, (plane, tag)) in self.planes.iter().enumerate() {
-            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32)) {
+            if from.is_some_and(|l| l.surface == SurfaceId::Plane(i as u32))
+                || beam.is_some_and(|b| !b.planes[i])
+            {
                 continue;
             }
             if plane.intersect(ray, t_max).is_some() && blocker(tag.material, 1) {
@@ -517,7 +540,7 @@ impl Scene {
             }
         }
         let mut mesh_stats = TraversalStats::default();
-        let mut leaf = |primitive: Primitive| match primitive {
+        let mut leaf = |primitive: Primitive, cut: Option<&Cut>| match primitive {
             Primitive::Sphere(i) => {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let crossings = match leaving_sphere(from, i) {
@@ -529,7 +552,7 @@ impl Scene {
             Primitive::Instance(k) => {
                 let material = self.instances[k as usize].1.material;
                 let skip = leaving_triangle(from, k);
-                self.blockers_in_instance(k, ray, t_max, &mut mesh_stats, |tri| {
+                self.blockers_in_instance(k, cut, ray, t_max, &mut mesh_stats, |tri| {
                     skip != Some(tri) && blocker(material, 1)
                 })
             }
@@ -542,6 +565,7 @@ impl Scene {
                 };
                 blockers_in(
                     &m.entry,
+                    cut,
                     ray,
                     self.triangle_test,
                     t_max,
@@ -551,16 +575,21 @@ impl Scene {
             }
         };
         let prims = self.primitives.as_slice();
-        let mut blocked = if let [only] = prims {
-            leaf(*only)
-        } else {
-            self.accel
-                .any_hit(ray, t_max, stats, |p| leaf(prims[p as usize]))
+        let mut blocked = match beam.and_then(|b| b.top.as_ref()) {
+            // The primitives the beam touches, with the accelerators' box test.
+            Some(touched) => touched.iter().any(|(p, cut)| {
+                self.primitive_bounds[*p as usize].hit(ray, t_max).is_some()
+                    && leaf(prims[*p as usize], cut.as_ref())
+            }),
+            None if prims.len() == 1 => leaf(prims[0], None),
+            None => self
+                .accel
+                .any_hit(ray, t_max, stats, |p| leaf(prims[p as usize], None)),
         };
         if !blocked && let Some(m) = &self.moving {
             blocked = m
                 .accel
-                .any_hit(ray, t_max, stats, |p| leaf(m.primitives[p as usize]));
+                .any_hit(ray, t_max, stats, |p| leaf(m.primitives[p as usize], None));
         }
         *stats += mesh_stats;
         blocked
@@ -571,6 +600,7 @@ impl Scene {
     fn blockers_in_instance<F>(
         &self,
         k: u32,
+        cut: Option<&Cut>,
         ray: &Ray,
         t_max: f32,
         stats: &mut TraversalStats,
@@ -582,7 +612,15 @@ impl Scene {
         let instance = &self.instances[k as usize].0;
         let local = instance.transform.map_or(*ray, |t| t.ray_to_object(ray));
         let entry = &self.meshes[instance.mesh as usize];
-        blockers_in(entry, &local, self.triangle_test, t_max, stats, blocker)
+        blockers_in(
+            entry,
+            cut,
+            &local,
+            self.triangle_test,
+            t_max,
+            stats,
+            blocker,
+        )
     }
 
     /// True when anything lies on `ray` in `(0, t_max)`.
