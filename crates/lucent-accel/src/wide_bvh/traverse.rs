@@ -375,16 +375,30 @@ impl WideBvh {
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
-        if cut.misses {
-            return false;
-        }
+        !cut.misses && self.closest_from(ray, t_max, stats, leaf, &cut.nodes)
+    }
+
+    /// The closest-hit traversal from `entry` (empty: the root), on the widest SIMD the
+    /// processor has.
+    #[inline]
+    fn closest_from<F>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+        entry: &[NodeW],
+    ) -> bool
+    where
+        F: FnMut(u32, &mut f32) -> bool,
+    {
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.closest_avx2(avx, ray, t_max, stats, leaf, &cut.nodes) };
+            return unsafe { self.closest_avx2(avx, ray, t_max, stats, leaf, entry) };
         }
-        self.closest_generic(Sse, ray, t_max, stats, leaf, &cut.nodes)
+        self.closest_generic(Sse, ray, t_max, stats, leaf, entry)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -418,16 +432,30 @@ impl WideBvh {
     where
         F: FnMut(u32) -> bool,
     {
-        if cut.misses {
-            return false;
-        }
+        !cut.misses && self.any_from(ray, t_max, stats, leaf, &cut.nodes)
+    }
+
+    /// The any-hit traversal from `entry` (empty: the root), on the widest SIMD the processor
+    /// has.
+    #[inline]
+    fn any_from<F>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+        entry: &[NodeW],
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &cut.nodes) };
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, entry) };
         }
-        self.any_generic(Sse, ray, t_max, stats, leaf, &cut.nodes)
+        self.any_generic(Sse, ray, t_max, stats, leaf, entry)
     }
 }
 
@@ -461,25 +489,13 @@ impl Accelerator for WideBvh {
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(avx) = Avx::detect() {
-            // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
-            #[allow(unsafe_code)]
-            return unsafe { self.closest_avx2(avx, ray, t_max, stats, leaf, &[]) };
-        }
-        self.closest_generic(Sse, ray, t_max, stats, leaf, &[])
+        self.closest_from(ray, t_max, stats, leaf, &[])
     }
 
     fn any_hit<F>(&self, ray: &Ray, t_max: f32, stats: &mut TraversalStats, leaf: F) -> bool
     where
         F: FnMut(u32) -> bool,
     {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(avx) = Avx::detect() {
-            // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
-            #[allow(unsafe_code)]
-            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &[]) };
-        }
-        self.any_generic(Sse, ray, t_max, stats, leaf, &[])
+        self.any_from(ray, t_max, stats, leaf, &[])
     }
 }

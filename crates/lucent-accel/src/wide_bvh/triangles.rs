@@ -109,13 +109,27 @@ impl WideTriangleBvh {
         skip: Option<u32>,
         stats: &mut TraversalStats,
     ) -> Option<PackedHit> {
+        self.closest_from(ray, t_max, skip, stats, &[])
+    }
+
+    /// The closest-hit traversal from `entry` (empty: the root), on the widest SIMD the
+    /// processor has.
+    #[inline]
+    fn closest_from(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        skip: Option<u32>,
+        stats: &mut TraversalStats,
+        entry: &[NodeW],
+    ) -> Option<PackedHit> {
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.closest_avx2(avx, ray, t_max, skip, stats, &[]) };
+            return unsafe { self.closest_avx2(avx, ray, t_max, skip, stats, entry) };
         }
-        self.closest(Sse, ray, t_max, skip, stats, &[])
+        self.closest(Sse, ray, t_max, skip, stats, entry)
     }
 
     /// Where the rays of beam `frustum` start in this tree (see [`WideBvh::cut`]).
@@ -141,13 +155,7 @@ impl WideTriangleBvh {
         if cut.misses {
             return None;
         }
-        #[cfg(target_arch = "x86_64")]
-        if let Some(avx) = Avx::detect() {
-            // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
-            #[allow(unsafe_code)]
-            return unsafe { self.closest_avx2(avx, ray, t_max, skip, stats, &cut.nodes) };
-        }
-        self.closest(Sse, ray, t_max, skip, stats, &cut.nodes)
+        self.closest_from(ray, t_max, skip, stats, &cut.nodes)
     }
 
     /// Calls `leaf(triangle)` for triangles hit in `(0, t_max)` until it returns `true`;
@@ -156,13 +164,30 @@ impl WideTriangleBvh {
     where
         F: FnMut(u32) -> bool,
     {
+        self.any_from(ray, t_max, stats, leaf, &[])
+    }
+
+    /// The any-hit traversal from `entry` (empty: the root), on the widest SIMD the processor
+    /// has.
+    #[inline]
+    fn any_from<F>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        stats: &mut TraversalStats,
+        leaf: F,
+        entry: &[NodeW],
+    ) -> bool
+    where
+        F: FnMut(u32) -> bool,
+    {
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
             #[allow(unsafe_code)]
-            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &[]) };
+            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, entry) };
         }
-        self.any(Sse, ray, t_max, stats, leaf, &[])
+        self.any(Sse, ray, t_max, stats, leaf, entry)
     }
 
     /// [`WideTriangleBvh::any_hit`] for a ray of the beam that `cut` was made for (a shadow
@@ -179,16 +204,7 @@ impl WideTriangleBvh {
     where
         F: FnMut(u32) -> bool,
     {
-        if cut.misses {
-            return false;
-        }
-        #[cfg(target_arch = "x86_64")]
-        if let Some(avx) = Avx::detect() {
-            // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
-            #[allow(unsafe_code)]
-            return unsafe { self.any_avx2(avx, ray, t_max, stats, leaf, &cut.nodes) };
-        }
-        self.any(Sse, ray, t_max, stats, leaf, &cut.nodes)
+        !cut.misses && self.any_from(ray, t_max, stats, leaf, &cut.nodes)
     }
 
     /// [`WideTriangleBvh::closest_hit`] on the baseline instruction set (two SSE registers per

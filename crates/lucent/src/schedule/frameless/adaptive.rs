@@ -181,11 +181,11 @@ impl AdaptiveFrameless {
             let slot = permute(i as u32, count as u32, time_key) as usize;
             let time = spread(t0, t1, slot, count);
             // Every COVER-th request covers the screen in frameless order.
-            if i % COVER == COVER - 1 {
-                if let Some(pixel) = self.cover.next() {
-                    out.push(SampleRequest { pixel, time });
-                    continue;
-                }
+            if i % COVER == COVER - 1
+                && let Some(pixel) = self.cover.next()
+            {
+                out.push(SampleRequest { pixel, time });
+                continue;
             }
             let target = (i as f64 + offset) / count as f64 * total;
             while tile + 1 < self.tiles.len() && self.cdf[tile] <= target {
