@@ -51,6 +51,14 @@ pub fn frameless(args: &FramelessStudyArgs) -> anyhow::Result<ExitCode> {
         capture_at: args.frames_at,
         ..StudySettings::default()
     };
+    if let Some(at) = args.frames_at
+        && !(at > 0.0 && at <= args.duration)
+    {
+        bail!(
+            "--frames-at {at}: the study measures from 0 to {} s (--duration); pick an instant inside",
+            args.duration
+        );
+    }
     for path in [&args.csv, &args.plot] {
         crate::output::check_writable(path)?;
     }
