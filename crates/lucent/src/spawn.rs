@@ -109,7 +109,7 @@ mod tests {
             normal: Vec3::Y,
             texture_coords: Vec3::ZERO,
             shading_normal: Vec3::Y,
-            uv: glam::Vec2::ZERO,
+            uv: crate::shape::Uv::At(glam::Vec2::ZERO),
             color: crate::Rgb::WHITE,
             material: 0,
             object: 0,

@@ -74,7 +74,7 @@ fn vertex_attributes_are_interpolated_with_the_barycentric_weights() {
             hit.shading_normal
         );
         assert_eq!(hit.normal, Vec3::Z, "the geometric normal stays the face's");
-        assert!((hit.uv - Vec2::new(0.25, 0.5)).length() < 1e-6);
+        assert!((hit.uv() - Vec2::new(0.25, 0.5)).length() < 1e-6);
         let c = hit.color;
         assert!((c.r - 0.25).abs() < 1e-6 && (c.g - 0.25).abs() < 1e-6 && (c.b - 0.5).abs() < 1e-6);
     }
@@ -162,6 +162,47 @@ fn image_textures_are_looked_up_at_the_uvs_and_tinted_by_vertex_colours() {
         ..Material::default()
     });
     assert!(b.build().unwrap_err().to_string().contains("image 3"));
+}
+
+#[test]
+fn spheres_are_textured_at_their_lat_long_coordinates() {
+    // A 2×1 image: u < 0.5 red, u ≥ 0.5 blue. Lat-long u = 0.5 + atan2(x, −z) / 2π: the
+    // sphere's −x side has u = 0.25, its +x side u = 0.75 (worked out only when looked up).
+    let image =
+        ImageTexture::new(2, 1, vec![Rgb::new(1.0, 0.0, 0.0), Rgb::new(0.0, 0.0, 1.0)]).unwrap();
+    let mut b = SceneBuilder::new(any_camera());
+    let img = b.image(image);
+    let m = b.material(Material {
+        kd: Texture::Image(img),
+        ..Material::default()
+    });
+    b.sphere(
+        lucent::shape::Sphere {
+            center: Vec3::ZERO,
+            radius: 1.0,
+        },
+        m,
+    );
+    let scene = b.build().unwrap();
+    let look = |from: Vec3| {
+        let ray = Ray::new(from, -from.normalize());
+        let hit = scene
+            .intersect(&ray, &mut TraversalStats::default())
+            .unwrap();
+        let colour = Integrator::Raycast.radiance(
+            &scene,
+            &ray,
+            &mut Sampler::new(0, 0, 0),
+            &mut RayStats::default(),
+        );
+        (hit.uv(), colour)
+    };
+    let (uv, colour) = look(Vec3::new(-5.0, 0.0, 0.0));
+    assert!((uv - Vec2::new(0.25, 0.5)).length() < 1e-6, "{uv}");
+    assert_eq!(colour, Rgb::new(1.0, 0.0, 0.0));
+    let (uv, colour) = look(Vec3::new(5.0, 0.0, 0.0));
+    assert!((uv - Vec2::new(0.75, 0.5)).length() < 1e-6, "{uv}");
+    assert_eq!(colour, Rgb::new(0.0, 0.0, 1.0));
 }
 
 #[test]

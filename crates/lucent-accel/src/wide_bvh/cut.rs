@@ -65,49 +65,50 @@ impl WideBvh {
                 misses,
             };
         }
-        // The touched children of a node, each with the surface area that ranks it for
-        // opening (−∞ for a leaf, never opened); computed once per slot, into no allocation.
-        let touched = |node: u32| -> ArrayVec<(Slot, f32), WIDTH> {
-            let n = &self.nodes[node as usize];
-            let mut mask = touched_children(frustum, n);
-            std::iter::from_fn(move || {
-                let k = mask.trailing_zeros() as usize;
-                mask &= mask.wrapping_sub(1);
-                (k < WIDTH).then(|| (n.child[k], n.count[k], n.child_bounds(k)))
-            })
-            .map(|s| {
-                let area = if s.1 == 0 {
-                    s.2.surface_area()
-                } else {
-                    f32::NEG_INFINITY
-                };
-                (s, area)
-            })
-            .collect()
-        };
-        let mut ranked: Vec<(Slot, f32)> = Vec::with_capacity(BUDGET + WIDTH);
-        ranked.extend(touched(0));
+        // The cut's front, in depth-first order: each touched child as (parent node, slot)
+        // with the surface area that ranks it for opening (−∞ for a leaf, never opened).
+        // Boxes are read from the parents only for the virtual nodes at the end; the front
+        // lives on the stack (a beam's cut is made once per tile and must cost little).
+        let mut front: ArrayVec<Front, { BUDGET + WIDTH }> = ArrayVec::new();
+        self.push_touched(frustum, 0, &mut front);
         loop {
-            let widest = (0..ranked.len())
-                .filter(|&i| ranked[i].1 > f32::NEG_INFINITY)
-                .max_by(|&a, &b| ranked[a].1.total_cmp(&ranked[b].1));
+            // The largest openable entry (the last of equals, as `max_by` picks).
+            let mut widest = None;
+            let mut widest_area = f32::NEG_INFINITY;
+            for (i, e) in front.iter().enumerate() {
+                if e.area > f32::NEG_INFINITY && e.area >= widest_area {
+                    (widest, widest_area) = (Some(i), e.area);
+                }
+            }
             let Some(i) = widest else { break };
-            let kids = touched(ranked[i].0.0);
-            if ranked.len() - 1 + kids.len() > budget {
+            let open = front[i];
+            let node = self.nodes[open.node as usize].child[open.slot as usize];
+            let mut kids: ArrayVec<Front, WIDTH> = ArrayVec::new();
+            self.push_touched(frustum, node, &mut kids);
+            if front.len() - 1 + kids.len() > budget {
                 break;
             }
-            ranked.splice(i..=i, kids);
+            // Replace entry i by its touched children, in place.
+            let tail: ArrayVec<Front, { BUDGET + WIDTH }> = front.drain(i + 1..).collect();
+            front.truncate(i);
+            front.extend(kids);
+            front.extend(tail);
         }
-        let front: Vec<Slot> = ranked.into_iter().map(|(s, _)| s).collect();
         if front.is_empty() {
             return Cut {
                 nodes: vec![],
                 misses: true,
             };
         }
-        let node_of = |slots: &[Slot]| {
+        let slot = |e: &Front| -> Slot {
+            let n = &self.nodes[e.node as usize];
+            let k = e.slot as usize;
+            (n.child[k], n.count[k], n.child_bounds(k))
+        };
+        let node_of = |entries: &[Front]| {
             let mut n = NodeW::empty();
-            for (k, &(child, count, b)) in slots.iter().enumerate() {
+            for (k, e) in entries.iter().enumerate() {
+                let (child, count, b) = slot(e);
                 n.set_bounds(k, b);
                 n.child[k] = child;
                 n.count[k] = count;
@@ -120,19 +121,56 @@ impl WideBvh {
                 misses: false,
             };
         }
-        let groups: Vec<Slot> = front
-            .chunks(WIDTH)
-            .enumerate()
-            .map(|(g, c)| {
-                let b = c.iter().fold(Aabb::EMPTY, |a, s| a.union(s.2));
-                (1 + g as u32, VIRTUAL, b)
-            })
-            .collect();
-        let mut nodes = vec![node_of(&groups)];
+        let mut nodes = Vec::with_capacity(1 + front.len().div_ceil(WIDTH));
+        let mut root = NodeW::empty();
+        for (g, c) in front.chunks(WIDTH).enumerate() {
+            let b = c.iter().fold(Aabb::EMPTY, |a, e| a.union(slot(e).2));
+            root.set_bounds(g, b);
+            root.child[g] = 1 + g as u32;
+            root.count[g] = VIRTUAL;
+        }
+        nodes.push(root);
         nodes.extend(front.chunks(WIDTH).map(node_of));
         Cut {
             nodes,
             misses: false,
+        }
+    }
+}
+
+/// An entry of a cut's front while it is made: slot `slot` of node `node`, and its rank.
+#[derive(Clone, Copy)]
+struct Front {
+    node: u32,
+    slot: u8,
+    /// The child's surface area if it is a tree node (it may be opened), −∞ for a leaf.
+    area: f32,
+}
+
+impl WideBvh {
+    /// Appends the children of node `node` that `frustum` touches to `out`, in slot order.
+    #[inline]
+    fn push_touched<const N: usize>(
+        &self,
+        frustum: &Frustum,
+        node: u32,
+        out: &mut ArrayVec<Front, N>,
+    ) {
+        let n = &self.nodes[node as usize];
+        let mut mask = touched_children(frustum, n);
+        while mask != 0 {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let area = if n.count[k] == 0 {
+                n.child_bounds(k).surface_area()
+            } else {
+                f32::NEG_INFINITY
+            };
+            out.push(Front {
+                node,
+                slot: k as u8,
+                area,
+            });
         }
     }
 }

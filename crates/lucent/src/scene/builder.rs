@@ -617,6 +617,10 @@ fn merged(
             bounds,
             mesh: world,
         },
+        single: (merge.iter().filter(|&&m| m).count() == 1)
+            .then(|| first.iter().position(|&f| f != u32::MAX))
+            .flatten()
+            .map(|k| k as u32),
         owner,
         first,
     }))

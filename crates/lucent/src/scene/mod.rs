@@ -77,6 +77,9 @@ struct Merged {
     owner: Vec<u32>,
     /// For each instance, its first merged triangle (`u32::MAX`: not merged).
     first: Vec<u32>,
+    /// The instance, when only one is merged (a scene of one mesh): its hits need no lookup
+    /// in `owner`, which for a large mesh is a cache miss per hit.
+    single: Option<u32>,
 }
 
 impl Merged {
@@ -90,8 +93,19 @@ impl Merged {
     /// The instance and its own triangle index of merged triangle `i`.
     #[inline]
     fn source(&self, i: u32) -> (u32, u32) {
-        let k = self.owner[i as usize];
-        (k, i - self.first[k as usize])
+        match self.single {
+            Some(k) => (k, i),
+            None => {
+                let k = self.owner[i as usize];
+                (k, i - self.first[k as usize])
+            }
+        }
+    }
+
+    /// The instance of merged triangle `i`.
+    #[inline]
+    fn owner_of(&self, i: u32) -> u32 {
+        self.single.unwrap_or_else(|| self.owner[i as usize])
     }
 }
 
@@ -231,7 +245,7 @@ impl Scene {
     /// The diffuse colour of `m` at `hit`: its texture there, times the mesh's vertex colour.
     #[inline]
     pub fn diffuse(&self, m: &Material, hit: &SurfaceHit) -> Rgb {
-        m.kd.eval(hit.texture_coords, hit.uv, &self.images) * hit.color
+        m.kd.eval(hit.texture_coords, || hit.uv(), &self.images) * hit.color
     }
 
     /// The bounding box of every bounded shape (infinite planes are left out).

@@ -12,6 +12,7 @@
 use super::query::{Candidate, Nearest, inclusive, sphere_hit};
 use super::{Beam, MeshAccel, Scene};
 use crate::shape::{Primitive, SurfaceHit};
+use arrayvec::ArrayVec;
 use lucent_accel::wide_bvh::{PACKET, PackedHit};
 use lucent_accel::{Ray, TraversalStats, WideTriangleBvh};
 
@@ -62,8 +63,10 @@ impl Scene {
         let mut t_max: [f32; PACKET] = std::array::from_fn(|i| nearest[i].t);
         for (p, cut) in touched {
             let bounds = &self.primitive_bounds[*p as usize];
-            let entering: Vec<usize> = (0..rays.len())
-                .filter(|&i| bounds.hit(&rays[i], t_max[i]).is_some())
+            // On the stack: a packet is eight rays, and this runs per packet and primitive.
+            // (A mesh with a cut needs no box test: the cut's boxes cull as well.)
+            let entering: ArrayVec<usize, PACKET> = (0..rays.len())
+                .filter(|&i| cut.is_some() || bounds.hit(&rays[i], t_max[i]).is_some())
                 .collect();
             if entering.is_empty() {
                 continue;
@@ -83,11 +86,12 @@ impl Scene {
                     let Some((packed, transform)) = self.packed_mesh(*p) else {
                         continue;
                     };
-                    let local: Vec<Ray> = entering
+                    let local: ArrayVec<Ray, PACKET> = entering
                         .iter()
                         .map(|&i| transform.map_or(rays[i], |t| t.ray_to_object(&rays[i])))
                         .collect();
-                    let limits: Vec<f32> = entering.iter().map(|&i| t_max[i]).collect();
+                    let limits: ArrayVec<f32, PACKET> =
+                        entering.iter().map(|&i| t_max[i]).collect();
                     let hits = packed.closest_hits_in(cut, &local, &limits, stats);
                     for (&i, hit) in entering.iter().zip(hits) {
                         if self.offer_packed(mesh, hit, &mut nearest[i]) {
@@ -101,7 +105,7 @@ impl Scene {
         }
         std::array::from_fn(|i| {
             let ray = rays.get(i)?;
-            nearest[i].candidate.map(|c| self.surface(ray, c))
+            nearest[i].candidate.as_ref().map(|c| self.surface(ray, c))
         })
     }
 

@@ -3,9 +3,8 @@
 use super::Beam;
 use super::{MeshAccel, Scene};
 use crate::Rgb;
-use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, gamma, triangle};
+use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, Uv, gamma, triangle};
 use crate::spawn::Leaving;
-use crate::texture::image::latlong_uv;
 use glam::{Vec2, Vec3};
 use lucent_accel::wide_bvh::PackedHit;
 use lucent_accel::{Accelerator, Cut, Ray, TraversalStats, WideTriangleBvh};
@@ -242,11 +241,13 @@ impl Scene {
         let prims = self.primitives.as_slice();
         match beam.and_then(|b| b.top.as_ref()) {
             // The primitives the beam touches, in any order: the nearest hit and its tie rule
-            // do not depend on it. The box test is the one the accelerators make.
+            // do not depend on it. The box test is the one the accelerators make; a mesh with
+            // a cut needs none, its cut's boxes (inside the mesh's) cull as well.
             Some(touched) => {
                 let mut t_max = nearest.t;
                 for (p, cut) in touched {
-                    if self.primitive_bounds[*p as usize].hit(ray, t_max).is_some() {
+                    if cut.is_some() || self.primitive_bounds[*p as usize].hit(ray, t_max).is_some()
+                    {
                         leaf(prims[*p as usize], cut.as_ref(), &mut t_max, &mut nearest);
                     }
                 }
@@ -271,7 +272,7 @@ impl Scene {
             });
         }
         *stats += mesh_stats;
-        nearest.candidate.map(|c| self.surface(ray, c))
+        nearest.candidate.as_ref().map(|c| self.surface(ray, c))
     }
 
     /// The tie key of triangle `tri` of instance `k`: instances after the spheres (whose key
@@ -377,8 +378,8 @@ impl Scene {
         }
     }
 
-    pub(super) fn surface(&self, ray: &Ray, candidate: Candidate) -> SurfaceHit {
-        match candidate {
+    pub(super) fn surface(&self, ray: &Ray, candidate: &Candidate) -> SurfaceHit {
+        match *candidate {
             Candidate::Plane(i, t) => {
                 let (plane, tag) = &self.planes[i as usize];
                 // Remove the along-normal rounding error of o + t·d.
@@ -391,7 +392,7 @@ impl Scene {
                     normal: plane.normal,
                     texture_coords: coords,
                     shading_normal: plane.normal,
-                    uv: coords.truncate(),
+                    uv: Uv::At(coords.truncate()),
                     color: Rgb::WHITE,
                     material: tag.material,
                     object: tag.object,
@@ -410,7 +411,7 @@ impl Scene {
                     normal,
                     texture_coords: point,
                     shading_normal: normal,
-                    uv: latlong_uv(normal),
+                    uv: Uv::LatLong,
                     color: Rgb::WHITE,
                     material: tag.material,
                     object: tag.object,
@@ -424,7 +425,12 @@ impl Scene {
                 let mesh = &self.meshes[instance.mesh as usize].mesh;
                 // Point and error from the vertices the ray met; normals from the object's
                 // own, so that they keep their side under a mirroring placement.
-                let object = if world { mesh.vertices(tri) } else { v };
+                // (A merged instance without a placement is in world space as it is.)
+                let object = if world && instance.transform.is_some() {
+                    mesh.vertices(tri)
+                } else {
+                    v
+                };
                 let here = hit.point(v);
                 let [b0, b1, b2] = hit.bary;
                 let here_error =
@@ -481,7 +487,7 @@ impl Scene {
                     normal,
                     texture_coords: point,
                     shading_normal,
-                    uv,
+                    uv: Uv::At(uv),
                     color,
                     material: tag.material,
                     object: tag.object,
@@ -560,7 +566,7 @@ impl Scene {
                 let Some(m) = &self.merged else { return false };
                 let skip = merged_skip(m, from);
                 let blocked = |i: u32| {
-                    let k = m.owner[i as usize];
+                    let k = m.owner_of(i);
                     skip != Some(i) && blocker(self.instances[k as usize].1.material, 1)
                 };
                 blockers_in(

@@ -46,8 +46,8 @@ pub struct SurfaceHit {
     /// the geometric normal's side), else the geometric normal.
     pub shading_normal: Vec3,
     /// Texture coordinates for image textures: a mesh's interpolated UVs, a sphere's lat-long
-    /// coordinates, a plane's own 2D frame.
-    pub uv: glam::Vec2,
+    /// coordinates, a plane's own 2D frame; see [`SurfaceHit::uv`].
+    pub uv: Uv,
     /// The mesh's interpolated vertex colour, white elsewhere; multiplies the diffuse colour.
     pub color: crate::Rgb,
     /// Index into the scene's materials.
@@ -62,6 +62,28 @@ pub struct SurfaceHit {
     pub bary: [f32; 3],
     /// A bound on the absolute rounding error of `point`, per axis.
     pub error: Vec3,
+}
+
+/// A hit's texture coordinates, or how to find them when a texture asks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Uv {
+    /// These coordinates.
+    At(glam::Vec2),
+    /// A sphere's latitude–longitude coordinates of the hit's normal: worked out only when an
+    /// image texture needs them (an `atan2` and an `acos` were a seventh of a camera ray's
+    /// whole query on the default scene, for nothing when the sphere has no image).
+    LatLong,
+}
+
+impl SurfaceHit {
+    /// The texture coordinates of the hit (see [`SurfaceHit::uv`]'s field).
+    #[inline]
+    pub fn uv(&self) -> glam::Vec2 {
+        match self.uv {
+            Uv::At(uv) => uv,
+            Uv::LatLong => crate::texture::image::latlong_uv(self.normal),
+        }
+    }
 }
 
 /// One surface of the scene, as a ray leaving it must know it.

@@ -24,16 +24,16 @@ pub enum Texture {
 }
 
 impl Texture {
-    /// The colour at a surface point with solid coordinates `p` and texture coordinates `uv`;
-    /// `images` are the scene's.
+    /// The colour at a surface point with solid coordinates `p` and texture coordinates
+    /// `uv()` (asked for only by image textures); `images` are the scene's.
     #[inline]
-    pub fn eval(&self, p: Vec3, uv: Vec2, images: &[ImageTexture]) -> Rgb {
+    pub fn eval(&self, p: Vec3, uv: impl FnOnce() -> Vec2, images: &[ImageTexture]) -> Rgb {
         match self {
             Texture::Solid(c) => *c,
             Texture::Checker(c) => c.eval(p),
             Texture::Image(i) => images
                 .get(*i as usize)
-                .map_or(Rgb::BLACK, |img| img.lookup(uv)),
+                .map_or(Rgb::BLACK, |img| img.lookup(uv())),
         }
     }
 }
