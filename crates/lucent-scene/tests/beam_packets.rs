@@ -44,7 +44,8 @@ fn every_example_hits_the_same_in_packets() {
                     .map(|&(x, y)| scene.camera.ray(x, y))
                     .collect();
                 for chunk in rays.chunks(PACKET) {
-                    let hits = scene.intersect_packet_in(&beam, chunk, &mut stats);
+                    let mut hits = [None; PACKET];
+                    scene.intersect_packet_in(&beam, chunk, &mut stats, &mut hits);
                     for (ray, hit) in chunk.iter().zip(&hits) {
                         let alone = scene.intersect(ray, &mut stats);
                         let key = |h: &Option<lucent::shape::SurfaceHit>| {

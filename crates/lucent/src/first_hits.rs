@@ -32,10 +32,9 @@ pub(crate) fn first_hits(
     shadows: bool,
     stats: &mut RayStats,
 ) -> FirstHits {
-    let mut hits = Vec::with_capacity(rays.len());
-    for packet in rays.chunks(PACKET) {
-        let found = scene.intersect_packet_in(beam, packet, &mut stats.traversal);
-        hits.extend_from_slice(&found[..packet.len()]);
+    let mut hits = vec![None; rays.len()];
+    for (packet, out) in rays.chunks(PACKET).zip(hits.chunks_mut(PACKET)) {
+        scene.intersect_packet_in(beam, packet, &mut stats.traversal, out);
     }
     let shadows = if shadows {
         let origins = hits.iter().flatten().fold(Aabb::EMPTY, |b, hit| {

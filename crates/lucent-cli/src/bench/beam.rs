@@ -86,14 +86,14 @@ pub fn measure(
                     for y in y0..y1 {
                         match (&beam, way) {
                             (Some(b), Way::Packets) => {
+                                let mut hits = [None; PACKET];
                                 for xs in (x0..x1).step_by(PACKET) {
                                     let n = PACKET.min((x1 - xs) as usize);
-                                    let rays: Vec<_> =
-                                        (0..n).map(|k| ray(xs + k as u32, y)).collect();
-                                    scene
-                                        .intersect_packet_in(b, &rays, &mut stats)
-                                        .into_iter()
-                                        .for_each(&mut count);
+                                    // On the stack: the timed loop allocates nothing.
+                                    let rays: [_; PACKET] =
+                                        std::array::from_fn(|k| ray(xs + k.min(n - 1) as u32, y));
+                                    scene.intersect_packet_in(b, &rays[..n], &mut stats, &mut hits);
+                                    hits[..n].iter().for_each(|h| count(*h));
                                 }
                             }
                             (Some(b), _) => (x0..x1)
