@@ -3,7 +3,7 @@
 //! each ray starts at the accelerators' roots, with beams each tile's rays go through the
 //! tile's [`lucent::scene::Beam`] (the beams' making included). The hits are checked to be the
 //! same (count and distances). Beams are also traced in packets: eight neighbours of a row
-//! of the tile at once ([`Scene::intersect_packet_in`]). Each is run three times, alternately; the fastest run counts.
+//! of the tile at once ([`Scene::intersect_packet_in`]). Each is run five times, alternately; the fastest run counts.
 
 use super::report::Measurement;
 use lucent::accel::TraversalStats;
@@ -12,8 +12,9 @@ use lucent::scene::Scene;
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// Runs of each kind; the fastest counts.
-const REPEATS: usize = 3;
+/// Runs of each kind, alternating; the fastest counts. (Five: a default-scene run lasts some
+/// tens of milliseconds, and on a shared machine three left its ratios ±20% apart.)
+const REPEATS: usize = 5;
 
 /// Tile sides measured.
 pub const TILES: [u32; 2] = [8, 16];

@@ -5,7 +5,7 @@
 //! timed too), and each ray is traced through it ([`Scene::occlusion_in`]). The camera hits are
 //! found before timing. (A scene lit only by directional lights, such as a mesh file with its
 //! default light, gets point lights up their beams instead: see `light_points`.) The answers (blocked or not) are checked to be the same, ray by ray.
-//! Each way runs three times, alternately; the fastest run counts.
+//! Each way runs five times, alternately; the fastest run counts.
 
 use super::report::Measurement;
 use lucent::accel::{Aabb, Ray, TraversalStats};
@@ -15,8 +15,9 @@ use lucent::spawn::{Leaving, spawn_ray};
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// Runs of each kind; the fastest counts.
-const REPEATS: usize = 3;
+/// Runs of each kind, alternating; the fastest counts. (Five: a default-scene run lasts some
+/// tens of milliseconds, and on a shared machine three left its ratios ±20% apart.)
+const REPEATS: usize = 5;
 
 /// One tile's shadow rays towards one light: the light, the rays' origins' box, and each ray
 /// with its length and the surface it leaves.
