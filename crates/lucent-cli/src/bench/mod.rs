@@ -14,10 +14,11 @@ mod rays;
 mod report;
 mod sampling;
 mod shadow;
+mod single_ray;
 
 use crate::cli::BenchArgs;
 use anyhow::{Context, bail};
-use lucent::accel::{AccelKind, TraversalStats, WideTriangleBvh};
+use lucent::accel::{AccelKind, TraversalStats};
 use lucent::scene::Scene;
 use lucent_scene::{SceneFile, Spanned};
 use rayon::prelude::*;
@@ -135,9 +136,17 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
             }
         }
         if let Some((triangles, sets)) = &peer_job {
-            rows.push(kernel_row(&name, triangles, sets, &threads)?);
+            // The kernel and the peers (those compiled in), like for like and in turn.
+            let mut contenders = vec![single_ray::kernel(triangles)];
+            contenders.extend(build_peers(triangles)?);
+            rows.extend(single_ray::measure_in_turn(
+                &name,
+                triangles.len(),
+                &contenders,
+                sets,
+                &threads,
+            )?);
         }
-        rows.extend(run_peers(&name, peer_job, &threads)?);
     }
     println!("{}", report::table(&rows, &threads));
     if !beam_rows.is_empty() {
@@ -154,104 +163,18 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The peers' rows for a scene of meshes alone (none when no peer is compiled in).
+/// The peers compiled in, built over the world-space `triangles`.
 #[cfg(any(feature = "bench-embree", feature = "bench-obvhs"))]
-fn run_peers(
-    name: &str,
-    job: Option<(Vec<[glam::Vec3; 3]>, [RaySet; 3])>,
-    threads: &[usize],
-) -> anyhow::Result<Vec<Row>> {
-    match &job {
-        Some((triangles, sets)) => peers::run(&peers::Job {
-            scene: name,
-            triangles,
-            sets,
-            threads,
-        }),
-        None => Ok(vec![]),
-    }
-}
-
-/// The peers' rows: none, since no peer is compiled in (see the `bench-peers` feature).
-#[cfg(not(any(feature = "bench-embree", feature = "bench-obvhs")))]
-fn run_peers(
-    _: &str,
-    _: Option<(Vec<[glam::Vec3; 3]>, [RaySet; 3])>,
-    _: &[usize],
-) -> anyhow::Result<Vec<Row>> {
-    Ok(vec![])
-}
-
-/// The wide BVH's triangle kernel on its own, over the scene's world-space triangles: what the
-/// peers are (a hit or not, no surface worked out), for a like-for-like comparison.
-fn kernel_row(
-    name: &str,
+fn build_peers(
     triangles: &[[glam::Vec3; 3]],
-    sets: &[RaySet; 3],
-    threads: &[usize],
-) -> anyhow::Result<Row> {
-    let positions: Vec<glam::Vec3> = triangles.iter().flatten().copied().collect();
-    let indices: Vec<[u32; 3]> = (0..triangles.len() as u32)
-        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
-        .collect();
-    let start = std::time::Instant::now();
-    let bvh = WideTriangleBvh::new(&positions, &indices);
-    let build_ms = start.elapsed().as_secs_f64() * 1e3;
-    let (nodes, depth, bytes) = bvh.info();
-    let mut row = Row {
-        scene: name.to_string(),
-        primitives: triangles.len(),
-        accel: report::KERNEL.to_string(),
-        build_ms,
-        nodes: Some(nodes),
-        depth: Some(depth),
-        bytes_per_prim: Some(bytes as f64 / triangles.len().max(1) as f64),
-        measurements: vec![],
-    };
-    for (set_name, set) in SETS.iter().zip(sets) {
-        for &t in threads {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build()?;
-            let occlusion = *set_name == "occlusion";
-            let start = std::time::Instant::now();
-            let (hits, stats) = pool.install(|| {
-                (0..set.rays.len())
-                    .into_par_iter()
-                    .with_min_len(1024)
-                    .fold(
-                        || (0u64, TraversalStats::default()),
-                        |(hits, mut stats), i| {
-                            let (ray, t_max) = (&set.rays[i], set.t_max[i]);
-                            let hit = if occlusion {
-                                bvh.any_hit(ray, t_max, &mut stats, |_| true)
-                            } else {
-                                bvh.closest_hit(ray, t_max, None, &mut stats).is_some()
-                            };
-                            (hits + u64::from(hit), stats)
-                        },
-                    )
-                    .reduce(
-                        || (0, TraversalStats::default()),
-                        |(h1, mut s1), (h2, s2)| {
-                            s1 += s2;
-                            (h1 + h2, s1)
-                        },
-                    )
-            });
-            let seconds = start.elapsed().as_secs_f64();
-            row.measurements.push((
-                set_name,
-                t,
-                Measurement {
-                    rays: set.rays.len() as u64,
-                    seconds,
-                    hits,
-                    stats,
-                },
-            ));
-        }
-    }
-    eprintln!("  {}", row.summary());
-    Ok(row)
+) -> anyhow::Result<Vec<single_ray::Contender<'static>>> {
+    peers::build(triangles)
+}
+
+/// No peers: none is compiled in (see the `bench-peers` feature).
+#[cfg(not(any(feature = "bench-embree", feature = "bench-obvhs")))]
+fn build_peers(_: &[[glam::Vec3; 3]]) -> anyhow::Result<Vec<single_ray::Contender<'static>>> {
+    Ok(vec![])
 }
 
 /// The example scenes and the shared meshes that are here.

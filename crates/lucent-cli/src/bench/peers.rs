@@ -6,120 +6,39 @@
 //! made of meshes alone (spheres and planes are lucent's own). Each traces one ray at a time
 //! (`rtcIntersect1` / `rtcOccluded1`; obvhs `ray_traverse` / `ray_traverse_miss`), as lucent does.
 
-use super::rays::RaySet;
-use super::report::{Measurement, Row, SETS};
+use super::single_ray::Contender;
 use glam::Vec3;
-use lucent::accel::TraversalStats;
-use rayon::prelude::*;
-use std::time::Instant;
 
-/// A peer's structure, ready for queries.
-pub trait Peer: Sync {
-    /// Closest hit: whether the ray hits within `t_max`.
-    fn closest(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool;
-    /// Occlusion: whether anything lies within `t_max`.
-    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool;
-}
-
-/// What every peer is measured on.
-pub struct Job<'a> {
-    /// The scene's file name.
-    pub scene: &'a str,
-    /// World-space triangles.
-    pub triangles: &'a [[Vec3; 3]],
-    /// The ray sets, in [`SETS`] order.
-    pub sets: &'a [RaySet],
-    /// Thread counts.
-    pub threads: &'a [usize],
-}
-
-/// Builds and measures every peer compiled in; one row each.
+/// Builds every peer compiled in over the world-space `triangles` (timed); one contender each.
 #[allow(clippy::vec_init_then_push)] // which pushes exist depends on the features
-pub fn run(job: &Job) -> anyhow::Result<Vec<Row>> {
+pub fn build(triangles: &[[Vec3; 3]]) -> anyhow::Result<Vec<Contender<'static>>> {
     #[allow(unused_mut)]
-    let mut rows = Vec::new();
+    let mut peers = Vec::new();
     #[cfg(feature = "bench-embree")]
-    rows.push(embree_peer::run(job)?);
+    peers.push(embree_peer::build(triangles));
     #[cfg(feature = "bench-obvhs")]
-    rows.push(obvhs_peer::run(job)?);
-    let _ = job;
-    Ok(rows)
-}
-
-/// Measures `peer` on every set and thread count of `job` into a row.
-fn measure_all(job: &Job, name: &str, build_ms: f64, peer: &dyn Peer) -> anyhow::Result<Row> {
-    let mut row = Row {
-        scene: job.scene.to_string(),
-        primitives: job.triangles.len(),
-        accel: name.to_string(),
-        build_ms,
-        nodes: None,
-        depth: None,
-        bytes_per_prim: None,
-        measurements: vec![],
-    };
-    for (set_name, set) in SETS.iter().zip(job.sets) {
-        for &threads in job.threads {
-            row.measurements.push((
-                set_name,
-                threads,
-                measure(peer, set, threads, *set_name == "occlusion")?,
-            ));
-        }
-    }
-    eprintln!("  {}", row.summary());
-    Ok(row)
-}
-
-/// Traces all rays of `set` with `peer` on `threads` threads.
-fn measure(
-    peer: &dyn Peer,
-    set: &RaySet,
-    threads: usize,
-    occlusion: bool,
-) -> anyhow::Result<Measurement> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()?;
-    let start = Instant::now();
-    let hits: u64 = pool.install(|| {
-        (0..set.rays.len())
-            .into_par_iter()
-            .with_min_len(1024)
-            .map(|i| {
-                let r = &set.rays[i];
-                let hit = if occlusion {
-                    peer.occluded(r.origin, r.dir, set.t_max[i])
-                } else {
-                    peer.closest(r.origin, r.dir, set.t_max[i])
-                };
-                u64::from(hit)
-            })
-            .sum()
-    });
-    let seconds = start.elapsed().as_secs_f64();
-    Ok(Measurement {
-        rays: set.rays.len() as u64,
-        seconds,
-        hits,
-        stats: TraversalStats::default(),
-    })
+    peers.push(obvhs_peer::build(triangles));
+    let _ = triangles;
+    Ok(peers)
 }
 
 #[cfg(feature = "bench-embree")]
 mod embree_peer {
-    use super::{Job, Peer, measure_all};
+    use super::super::single_ray::{Contender, SingleRay};
     use cgmath::{Vector3, Vector4};
     use embree::{
         CommittedScene, Device, Geometry, IntersectContext, Ray, RayHit, Scene, TriangleMesh,
     };
     use glam::Vec3;
+    use lucent::accel::TraversalStats;
     use std::time::Instant;
 
-    struct Embree<'a>(CommittedScene<'a>);
+    /// The device outlives the scene committed on it (both leaked: a bench builds one each
+    /// per scene and exits soon after).
+    struct Embree(CommittedScene<'static>);
 
-    impl Peer for Embree<'_> {
-        fn closest(&self, o: Vec3, d: Vec3, t_max: f32) -> bool {
+    impl SingleRay for Embree {
+        fn closest(&self, o: Vec3, d: Vec3, t_max: f32, _: &mut TraversalStats) -> bool {
             let mut ctx = IntersectContext::incoherent();
             let mut ray = RayHit::new(Ray::segment(
                 Vector3::new(o.x, o.y, o.z),
@@ -131,7 +50,7 @@ mod embree_peer {
             ray.hit.hit()
         }
 
-        fn occluded(&self, o: Vec3, d: Vec3, t_max: f32) -> bool {
+        fn occluded(&self, o: Vec3, d: Vec3, t_max: f32, _: &mut TraversalStats) -> bool {
             let mut ctx = IntersectContext::incoherent();
             let mut ray = Ray::segment(
                 Vector3::new(o.x, o.y, o.z),
@@ -145,14 +64,17 @@ mod embree_peer {
         }
     }
 
-    pub fn run(job: &Job) -> anyhow::Result<super::Row> {
-        let device = Device::new();
-        let n = job.triangles.len();
+    /// Embree's structure over `triangles`: the device and scene are leaked, so that the
+    /// committed scene (which borrows them) can outlive this call; a bench builds one per
+    /// scene measured, and exits soon after.
+    pub fn build(triangles: &[[Vec3; 3]]) -> Contender<'static> {
+        let device: &'static Device = Box::leak(Box::new(Device::new()));
+        let n = triangles.len();
         let start = Instant::now();
-        let mut mesh = TriangleMesh::unanimated(&device, n, 3 * n);
+        let mut mesh = TriangleMesh::unanimated(device, n, 3 * n);
         {
             let mut verts = mesh.vertex_buffer.map();
-            for (i, t) in job.triangles.iter().enumerate() {
+            for (i, t) in triangles.iter().enumerate() {
                 for (k, p) in t.iter().enumerate() {
                     verts[3 * i + k] = Vector4::new(p.x, p.y, p.z, 0.0);
                 }
@@ -167,18 +89,24 @@ mod embree_peer {
         }
         let mut geometry = Geometry::Triangle(mesh);
         geometry.commit();
-        let mut scene = Scene::new(&device);
+        let scene: &'static mut Scene<'static> = Box::leak(Box::new(Scene::new(device)));
         scene.attach_geometry(geometry);
+        let scene: &'static Scene<'static> = scene;
         let committed = scene.commit();
         let build_ms = start.elapsed().as_secs_f64() * 1e3;
-        measure_all(job, "embree3", build_ms, &Embree(committed))
+        Contender {
+            name: "embree3".into(),
+            build_ms,
+            info: None,
+            tracer: Box::new(Embree(committed)),
+        }
     }
 }
-
 #[cfg(feature = "bench-obvhs")]
 mod obvhs_peer {
-    use super::{Job, Peer, measure_all};
+    use super::super::single_ray::{Contender, SingleRay};
     use glam::{Vec3, Vec3A};
+    use lucent::accel::TraversalStats;
     use obvhs::BvhBuildParams;
     use obvhs::cwbvh::CwBvh;
     use obvhs::cwbvh::builder::build_cwbvh_from_tris;
@@ -192,15 +120,15 @@ mod obvhs_peer {
         triangles: Vec<Triangle>,
     }
 
-    impl Peer for Obvhs {
-        fn closest(&self, o: Vec3, d: Vec3, t_max: f32) -> bool {
+    impl SingleRay for Obvhs {
+        fn closest(&self, o: Vec3, d: Vec3, t_max: f32, _: &mut TraversalStats) -> bool {
             let ray = Ray::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
             let mut hit = RayHit::none();
             self.bvh
                 .ray_traverse(ray, &mut hit, |ray, id| self.triangles[id].intersect(ray))
         }
 
-        fn occluded(&self, o: Vec3, d: Vec3, t_max: f32) -> bool {
+        fn occluded(&self, o: Vec3, d: Vec3, t_max: f32, _: &mut TraversalStats) -> bool {
             let ray = Ray::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
             !self
                 .bvh
@@ -208,10 +136,10 @@ mod obvhs_peer {
         }
     }
 
-    pub fn run(job: &Job) -> anyhow::Result<super::Row> {
+    /// obvhs's compressed wide BVH over `triangles`.
+    pub fn build(triangles: &[[Vec3; 3]]) -> Contender<'static> {
         let start = Instant::now();
-        let tris: Vec<Triangle> = job
-            .triangles
+        let tris: Vec<Triangle> = triangles
             .iter()
             .map(|t| Triangle {
                 v0: Vec3A::from(t[0]),
@@ -231,6 +159,11 @@ mod obvhs_peer {
             .map(|&i| tris[i as usize])
             .collect();
         let build_ms = start.elapsed().as_secs_f64() * 1e3;
-        measure_all(job, "obvhs", build_ms, &Obvhs { bvh, triangles })
+        Contender {
+            name: "obvhs".into(),
+            build_ms,
+            info: None,
+            tracer: Box::new(Obvhs { bvh, triangles }),
+        }
     }
 }

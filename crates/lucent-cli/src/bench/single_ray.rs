@@ -1,0 +1,162 @@
+//! Like for like: lucent's triangle kernel and the peers, each given a ray as an origin, a
+//! direction and a segment length, as the peers' single-ray queries take them, on the same
+//! rays, measured in turn so that a noisy machine cannot favour whoever ran first.
+//!
+//! Each contender builds its own ray from (origin, direction) inside the timed loop — lucent's
+//! kernel included, its reciprocal direction and all — and answers hit or miss (closest hit)
+//! or blocked or not (occlusion). Every set and thread count is traced [`ROUNDS`] times, the
+//! contenders one after another in each round; a contender's fastest run counts.
+
+use super::rays::RaySet;
+use super::report::{self, Measurement, Row, SETS};
+use glam::Vec3;
+use lucent::accel::{Ray, TraversalStats, WideTriangleBvh};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Rounds of the contenders in turn; the fastest of each counts.
+const ROUNDS: usize = 5;
+
+/// A structure traced one ray at a time.
+pub trait SingleRay: Sync {
+    /// Whether the ray hits within `t_max` (the nearest hit found, as a closest-hit query).
+    fn closest(&self, origin: Vec3, dir: Vec3, t_max: f32, stats: &mut TraversalStats) -> bool;
+    /// Whether anything lies within `t_max`.
+    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32, stats: &mut TraversalStats) -> bool;
+}
+
+/// One structure in the comparison: its row's description and its queries.
+pub struct Contender<'a> {
+    /// The row name.
+    pub name: String,
+    /// Build time in milliseconds.
+    pub build_ms: f64,
+    /// Nodes, depth and bytes per primitive, where known.
+    pub info: Option<(usize, usize, f64)>,
+    /// The queries.
+    pub tracer: Box<dyn SingleRay + 'a>,
+}
+
+/// The wide BVH's triangle kernel alone.
+pub struct Kernel(pub WideTriangleBvh);
+
+impl SingleRay for Kernel {
+    fn closest(&self, origin: Vec3, dir: Vec3, t_max: f32, stats: &mut TraversalStats) -> bool {
+        self.0
+            .closest_hit(&Ray::new(origin, dir), t_max, None, stats)
+            .is_some()
+    }
+
+    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32, stats: &mut TraversalStats) -> bool {
+        self.0
+            .any_hit(&Ray::new(origin, dir), t_max, stats, |_| true)
+    }
+}
+
+/// The kernel as a contender, built over world-space `triangles` (timed).
+pub fn kernel(triangles: &[[Vec3; 3]]) -> Contender<'static> {
+    let positions: Vec<Vec3> = triangles.iter().flatten().copied().collect();
+    let indices: Vec<[u32; 3]> = (0..triangles.len() as u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
+    let start = Instant::now();
+    let bvh = WideTriangleBvh::new(&positions, &indices);
+    let build_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (nodes, depth, bytes) = bvh.info();
+    Contender {
+        name: report::KERNEL.to_string(),
+        build_ms,
+        info: Some((nodes, depth, bytes as f64 / triangles.len().max(1) as f64)),
+        tracer: Box::new(Kernel(bvh)),
+    }
+}
+
+/// Measures every contender on every set and thread count, in turn (see the module's docs);
+/// one row each, in the order given.
+pub fn measure_in_turn(
+    scene: &str,
+    primitives: usize,
+    contenders: &[Contender],
+    sets: &[RaySet],
+    threads: &[usize],
+) -> anyhow::Result<Vec<Row>> {
+    let mut rows: Vec<Row> = contenders
+        .iter()
+        .map(|c| Row {
+            scene: scene.to_string(),
+            primitives,
+            accel: c.name.clone(),
+            build_ms: c.build_ms,
+            nodes: c.info.map(|i| i.0),
+            depth: c.info.map(|i| i.1),
+            bytes_per_prim: c.info.map(|i| i.2),
+            measurements: vec![],
+        })
+        .collect();
+    for (set_name, set) in SETS.iter().zip(sets) {
+        let occlusion = *set_name == "occlusion";
+        for &t in threads {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build()?;
+            let mut best: Vec<Option<Measurement>> = vec![None; contenders.len()];
+            for _ in 0..ROUNDS {
+                for (c, best) in contenders.iter().zip(&mut best) {
+                    let m = pool.install(|| trace(c.tracer.as_ref(), set, occlusion));
+                    if let Some(b) = best
+                        && b.hits != m.hits
+                    {
+                        anyhow::bail!(
+                            "{}: {} answered {} hits, then {}",
+                            set_name,
+                            c.name,
+                            b.hits,
+                            m.hits
+                        );
+                    }
+                    if best.is_none_or(|b| m.seconds < b.seconds) {
+                        *best = Some(m);
+                    }
+                }
+            }
+            for (row, m) in rows.iter_mut().zip(best) {
+                row.measurements.push((set_name, t, m.expect("ROUNDS > 0")));
+            }
+        }
+    }
+    for row in &rows {
+        eprintln!("  {}", row.summary());
+    }
+    Ok(rows)
+}
+
+/// One timed pass of `tracer` over every ray of `set`, on the current thread pool.
+fn trace(tracer: &dyn SingleRay, set: &RaySet, occlusion: bool) -> Measurement {
+    let start = Instant::now();
+    let (hits, stats) = (0..set.rays.len())
+        .into_par_iter()
+        .with_min_len(1024)
+        .fold(
+            || (0u64, TraversalStats::default()),
+            |(hits, mut stats), i| {
+                let (r, t_max) = (&set.rays[i], set.t_max[i]);
+                let hit = if occlusion {
+                    tracer.occluded(r.origin, r.dir, t_max, &mut stats)
+                } else {
+                    tracer.closest(r.origin, r.dir, t_max, &mut stats)
+                };
+                (hits + u64::from(hit), stats)
+            },
+        )
+        .reduce(
+            || (0, TraversalStats::default()),
+            |(h1, mut s1), (h2, s2)| {
+                s1 += s2;
+                (h1 + h2, s1)
+            },
+        );
+    Measurement {
+        rays: set.rays.len() as u64,
+        seconds: start.elapsed().as_secs_f64(),
+        hits,
+        stats,
+    }
+}
