@@ -127,3 +127,42 @@ fn the_study_refuses_a_stochastic_integrator() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("deterministic integrator"), "{err}");
 }
+
+/// Ctrl-C (SIGINT) stops the study after the refresh under way: it writes the table, the CSV
+/// and the plot of what was measured, and exits 130.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_writes_what_the_study_measured() {
+    use std::time::Duration;
+    let dir = tempfile::tempdir().unwrap();
+    let (csv, svg) = (dir.path().join("s.csv"), dir.path().join("s.svg"));
+    // A minute of simulated time at a small size: far longer than the test waits.
+    let child = lucent()
+        .args(["study", "frameless", "--width", "48", "--height", "36"])
+        .args(["--samples-per-second", "20000", "--warmup", "0.05"])
+        .args(["--duration", "60", "--rate-divisors", "2", "--threads", "1"])
+        .arg("--csv")
+        .arg(&csv)
+        .arg("--plot")
+        .arg(&svg)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(2500));
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted: "), "{stderr}");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("double-buffer"), "the table: {stdout}");
+    let rows = std::fs::read_to_string(&csv).unwrap().lines().count() - 1;
+    // Five runs (three modes, two at half rate), the same refreshes each, fewer than a minute's.
+    assert!(rows > 0 && rows % 5 == 0 && rows < 5 * 3600, "{rows} rows");
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+}

@@ -43,7 +43,7 @@ fn settings() -> StudySettings {
 
 #[test]
 fn frameless_beats_double_buffering_and_adaptive_beats_frameless() {
-    let report = run_study(&MovingDisc, &settings(), |_, _| {});
+    let report = run_study(&MovingDisc, &settings(), |_, _| true);
     let run = |m| report.main_run(m).unwrap();
     let (db, fl, ad) = (
         run(DisplayMode::DoubleBuffer),
@@ -97,4 +97,28 @@ fn frameless_beats_double_buffering_and_adaptive_beats_frameless() {
     let (rate, bound) = report.matching_rate(DisplayMode::Adaptive).unwrap();
     eprintln!("adaptive matches double buffering at {rate:.0} samples/s (bound: {bound})");
     assert!(rate < settings().samples_per_second);
+}
+
+#[test]
+fn a_study_stopped_early_reports_the_refreshes_it_measured() {
+    let s = settings();
+    let warm = (s.warmup.unwrap() * s.refresh_hz).round() as usize;
+    // Stop ten refreshes into the measured span.
+    let report = run_study(&MovingDisc, &s, |done, _| done < warm + 10);
+    assert_eq!(report.runs.len(), 3 + 2 * s.rate_divisors.len());
+    for run in &report.runs {
+        assert_eq!(
+            run.refreshes.len(),
+            10,
+            "{} at {}",
+            run.mode.name(),
+            run.samples_per_second
+        );
+        assert!(run.mean_rmse().is_finite());
+    }
+    assert!((report.settings.duration - 10.0 / s.refresh_hz).abs() < 1e-12);
+    // Stopped in the warm-up: nothing measured, and the report says so.
+    let report = run_study(&MovingDisc, &s, |done, _| done < 3);
+    assert!(report.runs.iter().all(|r| r.refreshes.is_empty()));
+    assert_eq!(report.settings.duration, 0.0);
 }

@@ -15,6 +15,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Runs the study and writes its table, CSV and plot.
 pub fn frameless(args: &FramelessStudyArgs) -> anyhow::Result<ExitCode> {
@@ -79,13 +80,35 @@ pub fn frameless(args: &FramelessStudyArgs) -> anyhow::Result<ExitCode> {
         .num_threads(usize::from(args.threads))
         .build()
         .context("starting the threads")?;
+    // Ctrl-C stops the study after the refresh under way and writes what was measured; a
+    // second one exits at once.
+    let cancel = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&cancel);
+    ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(i32::from(INTERRUPTED));
+        }
+    })
+    .context("cannot install the Ctrl-C handler")?;
     let report = pool.install(|| {
         run_study(&tracer, &settings, |done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
+            !cancel.load(Ordering::SeqCst)
         })
     });
     bar.finish_and_clear();
+    let interrupted = cancel.load(Ordering::SeqCst);
+    if interrupted && report.settings.duration == 0.0 {
+        eprintln!("interrupted during the warm-up: nothing was measured, nothing written");
+        return Ok(ExitCode::from(INTERRUPTED));
+    }
+    if interrupted {
+        eprintln!(
+            "interrupted: {:.2} s of the {} s were measured; writing those",
+            report.settings.duration, args.duration
+        );
+    }
     print!("{}", summary(&report));
     println!(
         "({} rays in {:.1} s of wall time)",
@@ -97,10 +120,21 @@ pub fn frameless(args: &FramelessStudyArgs) -> anyhow::Result<ExitCode> {
         .with_context(|| format!("writing {}", args.plot.display()))?;
     eprintln!("wrote {} and {}", args.csv.display(), args.plot.display());
     if let (Some(dir), Some(at)) = (&args.frames_dir, args.frames_at) {
-        write_frames(&report, dir, at)?;
+        if report.capture.is_some() || !interrupted {
+            write_frames(&report, dir, at)?;
+        } else {
+            eprintln!("interrupted before t = {at} s: no pictures written");
+        }
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(if interrupted {
+        ExitCode::from(INTERRUPTED)
+    } else {
+        ExitCode::SUCCESS
+    })
 }
+
+/// The exit status of a study stopped by Ctrl-C (128 + SIGINT, as shells report it).
+const INTERRUPTED: u8 = 130;
 
 /// The table of the three modes at the full rate, and the matching rates.
 pub fn summary(report: &StudyReport) -> String {

@@ -214,11 +214,13 @@ struct Live {
     pending: Vec<f64>,
 }
 
-/// Runs the study on `tracer`'s scene; `progress(done, total)` is called after every refresh.
+/// Runs the study on `tracer`'s scene; `progress(done, total)` is called after every refresh
+/// and returns whether to go on. Stopped early, the report holds the refreshes measured so
+/// far (every run the same ones), and its `settings.duration` is the span they cover.
 pub fn run_study(
     tracer: &dyn Tracer,
     settings: &StudySettings,
-    mut progress: impl FnMut(usize, usize),
+    mut progress: impl FnMut(usize, usize) -> bool,
 ) -> StudyReport {
     let (width, height) = tracer.size();
     let n = (width as usize) * (height as usize);
@@ -275,6 +277,7 @@ pub fn run_study(
     let mut last_change = vec![f64::NEG_INFINITY; n]; // t_i of the latest change
     let mut before_change = vec![f64::NEG_INFINITY; n]; // t_{i-1} of it
     let mut capture = None;
+    let mut done = 0;
     for k in 1..=total {
         let (t_prev, t_now) = (start + (k - 1) as f64 * dt, start + k as f64 * dt);
         for l in &mut live {
@@ -316,7 +319,10 @@ pub fn run_study(
             }
             previous_ideal = Some(ideal);
         }
-        progress(k, total);
+        done = k;
+        if !progress(k, total) {
+            break;
+        }
     }
     let runs = live
         .into_iter()
@@ -328,6 +334,7 @@ pub fn run_study(
     StudyReport {
         settings: StudySettings {
             warmup: Some(warmup),
+            duration: done.saturating_sub(warm) as f64 / settings.refresh_hz,
             ..settings.clone()
         },
         width,
