@@ -106,3 +106,33 @@ fn wide_filters_and_jittered_samples_render_the_same_with_beams() {
         assert_same(&on, &off, &format!("{filter_sampling:?}"));
     }
 }
+
+#[test]
+fn adaptive_and_quadtree_sampling_render_the_same_with_beams() {
+    // Corner rays (pixel corners, sub-pixel corners, the corners of neighbouring pixels and of
+    // quadtree blocks) through each tile's beam: every example under Whitted, at a depth and
+    // threshold that split often, from pixels and from 4×4 blocks.
+    use lucent::render::Sampling;
+    use lucent::schedule::adaptive::Adaptive;
+    for path in examples() {
+        let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
+        file.desc.image.width = Spanned::new(0..0, 45);
+        file.desc.image.height = Spanned::new(0..0, 34);
+        let loaded = file.build().unwrap();
+        for block in [0, 2] {
+            let settings = RenderSettings {
+                integrator: Integrator::Whitted(Whitted::default()),
+                sampling: Sampling::Adaptive(Adaptive {
+                    threshold: 0.02,
+                    depth: 2,
+                    block,
+                }),
+                ..loaded.settings
+            };
+            let name = format!("{} (adaptive, blocks of {})", path.display(), 1 << block);
+            let on = film(&loaded.scene, &settings, true);
+            let off = film(&loaded.scene, &settings, false);
+            assert_same(&on, &off, &name);
+        }
+    }
+}

@@ -20,7 +20,7 @@ use crate::integrator::{Integrator, RayStats};
 use crate::sampling::sobol::Sampler;
 use crate::sampling::{pixel_offset, uniform};
 use crate::scene::{Beam, Scene};
-use crate::schedule::adaptive::{Adaptive, Band, BandCorners};
+use crate::schedule::adaptive::{Adaptive, Band, BandCorners, corner_beam};
 use crate::schedule::{Tile, tiles};
 use lucent_accel::Ray;
 use rayon::prelude::*;
@@ -367,10 +367,12 @@ pub fn render(
                     integrator: &settings.integrator,
                     adaptive: a,
                     band: &band,
+                    beam: None,
                 };
+                let beams = beams_apply(settings);
                 work[start..end].par_iter().for_each(|tile| {
                     run(tile, &|t, part| {
-                        render_tile_adaptive(&corners, t, part, &density, hooks.cancel)
+                        render_tile_adaptive(&corners, beams, t, part, &density, hooks.cancel)
                     })
                 });
                 above = Some(band);
@@ -467,11 +469,23 @@ fn lock(m: &Mutex<Film>) -> std::sync::MutexGuard<'_, Film> {
 /// each used in `density`; stops between pixels when cancelled.
 fn render_tile_adaptive(
     corners: &BandCorners,
+    beams: bool,
     tile: &Tile,
     part: &mut Film,
     density: &Mutex<Vec<u32>>,
     cancel: &AtomicBool,
 ) -> (RayStats, u64) {
+    // The tile's corner rays through one beam (the same values as from the roots).
+    let beam = beams
+        .then(|| {
+            let block = corners.adaptive.block;
+            corner_beam(corners.scene, (tile.x0, tile.y0), (tile.x1, tile.y1), block)
+        })
+        .flatten();
+    let corners = &BandCorners {
+        beam: beam.as_ref(),
+        ..*corners
+    };
     let mut stats = RayStats::default();
     let mut taken = 0;
     let mut used = Vec::with_capacity(tile.pixel_count() as usize);
@@ -688,14 +702,20 @@ fn render_tile_splats(
     (stats, taken, Some(splats))
 }
 
-/// The beam of `tile`'s camera rays, when beams are on, the camera is a pinhole and the
-/// integrator is not a debug view (some show the traversal's counts, which a beam changes).
+/// Whether camera rays go through beams: beams are on and the integrator is not a debug
+/// view (some show the traversal's counts, which a beam changes).
+fn beams_apply(settings: &RenderSettings) -> bool {
+    settings.beam && !matches!(settings.integrator, Integrator::Debug(_))
+}
+
+/// The beam of `tile`'s camera rays, when beams apply ([`beams_apply`]) and the camera is a
+/// pinhole.
 ///
 /// A sample lands in `[x, x + 1)` of its pixel, or within the filter's radius of the pixel's
 /// centre when the filter is importance sampled: the tile widened by the radius (at least half
 /// a pixel) holds every camera ray of the tile.
 fn tile_beam(scene: &Scene, settings: &RenderSettings, tile: &Tile) -> Option<Beam> {
-    if !settings.beam || matches!(settings.integrator, Integrator::Debug(_)) {
+    if !beams_apply(settings) {
         return None;
     }
     let m = settings.filter.radius().max(0.5);

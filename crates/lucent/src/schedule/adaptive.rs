@@ -29,7 +29,7 @@
 use crate::color::Rgb;
 use crate::integrator::{Integrator, RayStats};
 use crate::sampling::sobol::Sampler;
-use crate::scene::Scene;
+use crate::scene::{Beam, Scene};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -175,6 +175,7 @@ impl Band {
 }
 
 /// What the pixels of one band need to find their corners.
+#[derive(Clone, Copy)]
 pub struct BandCorners<'a> {
     /// The scene traced.
     pub scene: &'a Scene,
@@ -184,6 +185,30 @@ pub struct BandCorners<'a> {
     pub adaptive: Adaptive,
     /// The band's corners.
     pub band: &'a Band,
+    /// A beam holding every corner ray this is asked for (see [`corner_beam`]), or none:
+    /// the corners' hits are found through it, the same bit for bit.
+    pub beam: Option<&'a Beam>,
+}
+
+/// The beam of the corner rays that the pixels and blocks of the screen rectangle
+/// `[x0, x1) × [y0, y1)` (blocks of `2^block` pixels starting at `(x0, y0)`) may trace: their
+/// own corners, and those of the pixels beside them (see `busy_neighbour`); `None` for a
+/// camera without one (a thin lens).
+pub fn corner_beam(
+    scene: &Scene,
+    (x0, y0): (u32, u32),
+    (x1, y1): (u32, u32),
+    block: u32,
+) -> Option<Beam> {
+    let size = 1u32 << block;
+    // A block starting inside the rectangle may reach past it; neighbours reach one pixel out.
+    let reach = |a0: u32, a1: u32| a0 + (a1 - a0).div_ceil(size) * size;
+    let (xe, ye) = (reach(x0, x1), reach(y0, y1));
+    let frustum = scene.camera.frustum(
+        (x0 as f32 - 1.5, y0 as f32 - 1.5),
+        (xe as f32 + 1.5, ye as f32 + 1.5),
+    )?;
+    Some(scene.beam(&frustum))
 }
 
 /// Corners inside the pixel being worked on.
@@ -198,7 +223,7 @@ impl BandCorners<'_> {
         let mut sampler = Sampler::new(0, (u64::from(j) << 32) | u64::from(i), 0);
         let value = self
             .integrator
-            .radiance(self.scene, &ray, &mut sampler, stats);
+            .radiance_in(self.scene, self.beam, &ray, &mut sampler, stats);
         if value.is_finite() {
             value
         } else {
