@@ -2,6 +2,8 @@
 
 mod common;
 
+#[cfg(unix)]
+use common::signal_after;
 use common::{assert_success, lucent, read_pfm, workspace};
 
 #[test]
@@ -140,38 +142,30 @@ fn info_counts_the_bunny_triangles() {
 #[cfg(unix)]
 #[test]
 fn ctrl_c_writes_the_partial_image() {
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("partial.pfm");
     // Large enough to take many seconds.
-    let child = lucent()
-        .args([
-            "render",
-            "--width",
-            "2000",
-            "--height",
-            "1500",
-            "--spp",
-            "64",
-            "--threads",
-            "1",
-            "-o",
-        ])
-        .arg(&out)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(700));
-    let status = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let start = Instant::now();
-    let output = child.wait_with_output().unwrap();
+    let (output, stopping) = signal_after(
+        lucent()
+            .args([
+                "render",
+                "--width",
+                "2000",
+                "--height",
+                "1500",
+                "--spp",
+                "64",
+                "--threads",
+                "1",
+                "-o",
+            ])
+            .arg(&out),
+        Duration::from_millis(700),
+        "INT",
+    );
     assert!(
-        start.elapsed() < Duration::from_secs(2),
+        stopping < Duration::from_secs(2),
         "stopped within a second or so"
     );
     assert_eq!(

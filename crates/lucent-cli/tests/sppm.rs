@@ -5,7 +5,7 @@
 mod common;
 
 use common::*;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 #[test]
 fn the_caustic_examples_render_with_their_caustic() {
@@ -101,24 +101,16 @@ fn what_photon_mapping_cannot_do_is_refused() {
 fn a_stopped_photon_mapper_writes_its_image() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("caustic.pfm");
-    let child = lucent()
-        .arg("render")
-        .arg(workspace().join("examples/caustic.toml"))
-        .args(["--width", "40", "--height", "30", "--spp", "100000", "-o"])
-        .arg(&out)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(800));
-    let status = std::process::Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let stopped = Instant::now();
-    let output = child.wait_with_output().unwrap();
-    assert!(stopped.elapsed() < Duration::from_secs(10));
+    let (output, stopping) = signal_after(
+        lucent()
+            .arg("render")
+            .arg(workspace().join("examples/caustic.toml"))
+            .args(["--width", "40", "--height", "30", "--spp", "100000", "-o"])
+            .arg(&out),
+        Duration::from_millis(800),
+        "TERM",
+    );
+    assert!(stopping < Duration::from_secs(10));
     assert_eq!(output.status.code(), Some(130));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("cannot be resumed"), "{stderr}");

@@ -4,6 +4,8 @@
 
 mod common;
 
+#[cfg(unix)]
+use common::signal_after;
 use common::{assert_success, lucent};
 
 /// The summary row of `mode`: mean RMSE, stale %, mean and p95 latency in ms.
@@ -137,25 +139,18 @@ fn ctrl_c_writes_what_the_study_measured() {
     let dir = tempfile::tempdir().unwrap();
     let (csv, svg) = (dir.path().join("s.csv"), dir.path().join("s.svg"));
     // A minute of simulated time at a small size: far longer than the test waits.
-    let child = lucent()
-        .args(["study", "frameless", "--width", "48", "--height", "36"])
-        .args(["--samples-per-second", "20000", "--warmup", "0.05"])
-        .args(["--duration", "60", "--rate-divisors", "2", "--threads", "1"])
-        .arg("--csv")
-        .arg(&csv)
-        .arg("--plot")
-        .arg(&svg)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(2500));
-    let status = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let output = child.wait_with_output().unwrap();
+    let (output, _) = signal_after(
+        lucent()
+            .args(["study", "frameless", "--width", "48", "--height", "36"])
+            .args(["--samples-per-second", "20000", "--warmup", "0.05"])
+            .args(["--duration", "60", "--rate-divisors", "2", "--threads", "1"])
+            .arg("--csv")
+            .arg(&csv)
+            .arg("--plot")
+            .arg(&svg),
+        Duration::from_millis(2500),
+        "INT",
+    );
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(130), "{stderr}");
     assert!(stderr.contains("interrupted: "), "{stderr}");

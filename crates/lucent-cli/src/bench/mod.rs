@@ -18,15 +18,13 @@ mod single_ray;
 
 use crate::cli::BenchArgs;
 use anyhow::{Context, bail};
-use lucent::accel::{AccelKind, TraversalStats};
+use lucent::accel::AccelKind;
 use lucent::scene::Scene;
 use lucent_scene::{SceneFile, Spanned};
-use rayon::prelude::*;
 use rays::RaySet;
 use report::{Measurement, Row, SETS};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 /// Side of the square image the camera rays cover.
 const CAMERA_SIDE: u32 = 1024;
@@ -228,37 +226,15 @@ fn measure(
     // A subset is spread evenly over the set (camera rays are in reading order: the first
     // rows alone would be all sky).
     let stride = (set.rays.len() / count.max(1)).max(1);
-    let start = Instant::now();
-    let (hits, stats) = pool.install(|| {
-        (0..count)
-            .into_par_iter()
-            .with_min_len(1024)
-            .fold(
-                || (0u64, TraversalStats::default()),
-                |(hits, mut stats), k| {
-                    let i = (k * stride) % set.rays.len();
-                    let ray = &set.rays[i];
-                    let hit = if occlusion {
-                        scene.occluded(ray, set.t_max[i], &mut stats)
-                    } else {
-                        scene.intersect(ray, &mut stats).is_some()
-                    };
-                    (hits + u64::from(hit), stats)
-                },
-            )
-            .reduce(
-                || (0, TraversalStats::default()),
-                |(h1, mut s1), (h2, s2)| {
-                    s1 += s2;
-                    (h1 + h2, s1)
-                },
-            )
-    });
-    let seconds = start.elapsed().as_secs_f64();
-    Ok(Measurement {
-        rays: count as u64,
-        seconds,
-        hits,
-        stats,
-    })
+    Ok(pool.install(|| {
+        Measurement::timed(count, |k, stats| {
+            let i = (k * stride) % set.rays.len();
+            let ray = &set.rays[i];
+            if occlusion {
+                scene.occluded(ray, set.t_max[i], stats)
+            } else {
+                scene.intersect(ray, stats).is_some()
+            }
+        })
+    }))
 }

@@ -18,6 +18,39 @@ pub struct Measurement {
 }
 
 impl Measurement {
+    /// Times `count` queries on the current thread pool: `query(k, stats)` runs the `k`-th and
+    /// says whether it hit (or was blocked).
+    pub fn timed(
+        count: usize,
+        query: impl Fn(usize, &mut TraversalStats) -> bool + Sync,
+    ) -> Measurement {
+        use rayon::prelude::*;
+        let start = std::time::Instant::now();
+        let (hits, stats) = (0..count)
+            .into_par_iter()
+            .with_min_len(1024)
+            .fold(
+                || (0u64, TraversalStats::default()),
+                |(hits, mut stats), k| {
+                    let hit = query(k, &mut stats);
+                    (hits + u64::from(hit), stats)
+                },
+            )
+            .reduce(
+                || (0, TraversalStats::default()),
+                |(h1, mut s1), (h2, s2)| {
+                    s1 += s2;
+                    (h1 + h2, s1)
+                },
+            );
+        Measurement {
+            rays: count as u64,
+            seconds: start.elapsed().as_secs_f64(),
+            hits,
+            stats,
+        }
+    }
+
     /// Million rays per second.
     pub fn mrays(&self) -> f64 {
         self.rays as f64 / self.seconds.max(1e-9) / 1e6

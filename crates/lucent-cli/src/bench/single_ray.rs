@@ -11,7 +11,6 @@ use super::rays::RaySet;
 use super::report::{self, Measurement, Row, SETS};
 use glam::Vec3;
 use lucent::accel::{Ray, TraversalStats, WideTriangleBvh};
-use rayon::prelude::*;
 use std::time::Instant;
 
 /// Rounds of the contenders in turn; the fastest of each counts.
@@ -130,33 +129,12 @@ pub fn measure_in_turn(
 
 /// One timed pass of `tracer` over every ray of `set`, on the current thread pool.
 fn trace(tracer: &dyn SingleRay, set: &RaySet, occlusion: bool) -> Measurement {
-    let start = Instant::now();
-    let (hits, stats) = (0..set.rays.len())
-        .into_par_iter()
-        .with_min_len(1024)
-        .fold(
-            || (0u64, TraversalStats::default()),
-            |(hits, mut stats), i| {
-                let (r, t_max) = (&set.rays[i], set.t_max[i]);
-                let hit = if occlusion {
-                    tracer.occluded(r.origin, r.dir, t_max, &mut stats)
-                } else {
-                    tracer.closest(r.origin, r.dir, t_max, &mut stats)
-                };
-                (hits + u64::from(hit), stats)
-            },
-        )
-        .reduce(
-            || (0, TraversalStats::default()),
-            |(h1, mut s1), (h2, s2)| {
-                s1 += s2;
-                (h1 + h2, s1)
-            },
-        );
-    Measurement {
-        rays: set.rays.len() as u64,
-        seconds: start.elapsed().as_secs_f64(),
-        hits,
-        stats,
-    }
+    Measurement::timed(set.rays.len(), |i, stats| {
+        let (r, t_max) = (&set.rays[i], set.t_max[i]);
+        if occlusion {
+            tracer.occluded(r.origin, r.dir, t_max, stats)
+        } else {
+            tracer.closest(r.origin, r.dir, t_max, stats)
+        }
+    })
 }

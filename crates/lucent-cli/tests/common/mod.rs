@@ -121,3 +121,27 @@ pub fn assert_close(got: [f32; 3], want: [f32; 3], rel: f32) {
         );
     }
 }
+
+/// Runs `command` (its output captured), sends it `signal` (as `kill -INT`: "INT", "TERM")
+/// after `wait`, and returns its output and how long it took to exit after the signal.
+#[cfg(unix)]
+pub fn signal_after(
+    command: &mut Command,
+    wait: std::time::Duration,
+    signal: &str,
+) -> (Output, std::time::Duration) {
+    let child = command
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(wait);
+    let status = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success(), "kill -{signal}");
+    let sent = std::time::Instant::now();
+    let output = child.wait_with_output().unwrap();
+    (output, sent.elapsed())
+}
