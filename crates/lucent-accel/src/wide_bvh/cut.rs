@@ -89,10 +89,10 @@ impl WideBvh {
                 break;
             }
             // Replace entry i by its touched children, in place.
-            let tail: ArrayVec<Front, { BUDGET + WIDTH }> = front.drain(i + 1..).collect();
-            front.truncate(i);
-            front.extend(kids);
-            front.extend(tail);
+            front.remove(i);
+            for (k, kid) in kids.into_iter().enumerate() {
+                front.insert(i + k, kid);
+            }
         }
         if front.is_empty() {
             return Cut {
