@@ -1,9 +1,8 @@
 //! An 8-wide BVH: each node holds the boxes of up to eight children, tested against a ray at
 //! once with SIMD (AVX2 where the processor has it, see [`simd`]; two SSE steps otherwise).
 //!
-//! Built by collapsing a binary SAH BVH (Wald et al. 2008, "Getting rid of packets"): a node
-//! takes its two children, then repeatedly replaces its interior child of largest surface area
-//! by that child's two children, until it has eight. [`WideTriangleBvh`] specialises the leaves
+//! Built by collapsing a binary SAH BVH, keeping its leaves, into the wide tree whose nodes
+//! have the least total surface area (module `collapse`). [`WideTriangleBvh`] specialises the leaves
 //! for triangles: they hold packs of eight triangles laid out for a SIMD watertight test.
 
 mod collapse;
