@@ -282,14 +282,14 @@ impl Builder {
     /// `scale = bins / extent` (0 along a flat axis).
     #[inline(always)]
     fn bins_of(&self, c: Vec3A, lo: Vec3A, scale: Vec3A) -> [usize; 3] {
-        // NaN and negatives cast to 0; the top edge would be `bins`, hence the `min`.
-        let k = ((c - lo) * scale).to_array();
-        let top = self.options.bins - 1;
-        [
-            (k[0] as usize).min(top),
-            (k[1] as usize).min(top),
-            (k[2] as usize).min(top),
-        ]
+        // Truncated in SIMD, where NaN and out-of-range values become `i32::MIN`; then
+        // clamped, which also keeps the top edge (`bins`) in the last bin. (Rust's saturating
+        // `as usize` per lane took a quarter of the build.)
+        let k = (c - lo) * scale;
+        let k = wide::f32x4::new([k.x, k.y, k.z, 0.0]).fast_trunc_int();
+        let top = wide::i32x4::splat(self.options.bins as i32 - 1);
+        let k = k.max(wide::i32x4::ZERO).min(top).to_array();
+        [k[0] as usize, k[1] as usize, k[2] as usize]
     }
 
     fn scale(&self, centroids: Box3) -> Vec3A {
