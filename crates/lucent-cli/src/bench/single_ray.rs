@@ -4,8 +4,12 @@
 //!
 //! Each contender builds its own ray from (origin, direction) inside the timed loop — lucent's
 //! kernel included, its reciprocal direction and all — and answers hit or miss (closest hit)
-//! or blocked or not (occlusion). Every set and thread count is traced [`ROUNDS`] times, the
-//! contenders one after another in each round; a contender's fastest run counts.
+//! or blocked or not (occlusion). Every set is cut into [`CHUNKS`] runs of consecutive rays,
+//! and each chunk is traced by the contenders one after another, [`ROUNDS`] times over: a
+//! contender's time is the sum over chunks of its fastest time on each; who goes first on a
+//! chunk (and finds its rays out of cache) changes from chunk to chunk and round to round. A machine that slows
+//! for a moment then slows every contender on the same chunk (they run within a few
+//! hundredths of a second of each other), and the slow round of that chunk does not count.
 
 use super::rays::RaySet;
 use super::report::{self, Measurement, Row, SETS};
@@ -13,8 +17,11 @@ use glam::Vec3;
 use lucent::accel::{Ray, TraversalStats, WideTriangleBvh};
 use std::time::Instant;
 
-/// Rounds of the contenders in turn; the fastest of each counts.
+/// Rounds of the contenders in turn; the fastest of each on each chunk counts.
 const ROUNDS: usize = 5;
+
+/// Runs of consecutive rays a set is cut into, each traced by all contenders in turn.
+const CHUNKS: usize = 16;
 
 /// A structure traced one ray at a time.
 pub trait SingleRay: Sync {
@@ -94,30 +101,62 @@ pub fn measure_in_turn(
         .collect();
     for (set_name, set) in SETS.iter().zip(sets) {
         let occlusion = *set_name == "occlusion";
+        let n = set.rays.len();
+        let chunks: Vec<std::ops::Range<usize>> = (0..CHUNKS)
+            .map(|c| c * n / CHUNKS..(c + 1) * n / CHUNKS)
+            .filter(|r| !r.is_empty())
+            .collect();
         for &t in threads {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build()?;
-            let mut best: Vec<Option<Measurement>> = vec![None; contenders.len()];
-            for _ in 0..ROUNDS {
-                for (c, best) in contenders.iter().zip(&mut best) {
-                    let m = pool.install(|| trace(c.tracer.as_ref(), set, occlusion));
-                    if let Some(b) = best
-                        && b.hits != m.hits
-                    {
-                        anyhow::bail!(
-                            "{}: {} answered {} hits, then {}",
-                            set_name,
-                            c.name,
-                            b.hits,
-                            m.hits
-                        );
-                    }
-                    if best.is_none_or(|b| m.seconds < b.seconds) {
-                        *best = Some(m);
+            // best[contender][chunk]: the fastest run so far.
+            let mut best: Vec<Vec<Option<Measurement>>> =
+                vec![vec![None; chunks.len()]; contenders.len()];
+            for round in 0..ROUNDS {
+                for (k, chunk) in chunks.iter().enumerate() {
+                    // Whoever goes first on a chunk finds its rays out of cache: take turns.
+                    for j in 0..contenders.len() {
+                        let i = (j + round + k) % contenders.len();
+                        let c = &contenders[i];
+                        let m = pool
+                            .install(|| trace(c.tracer.as_ref(), set, chunk.clone(), occlusion));
+                        let best = &mut best[i][k];
+                        if let Some(b) = best
+                            && b.hits != m.hits
+                        {
+                            anyhow::bail!(
+                                "{set_name}: {} answered {} hits on rays {chunk:?}, then {}",
+                                c.name,
+                                b.hits,
+                                m.hits
+                            );
+                        }
+                        if best.is_none_or(|b| m.seconds < b.seconds) {
+                            *best = Some(m);
+                        }
                     }
                 }
             }
-            for (row, m) in rows.iter_mut().zip(best) {
-                row.measurements.push((set_name, t, m.expect("ROUNDS > 0")));
+            for (row, best) in rows.iter_mut().zip(best) {
+                let total = best
+                    .into_iter()
+                    .map(|m| m.expect("ROUNDS > 0"))
+                    .reduce(|a, b| Measurement {
+                        rays: a.rays + b.rays,
+                        seconds: a.seconds + b.seconds,
+                        hits: a.hits + b.hits,
+                        stats: {
+                            let mut s = a.stats;
+                            s += b.stats;
+                            s
+                        },
+                    })
+                    .unwrap_or(Measurement {
+                        rays: 0,
+                        seconds: 0.0,
+                        hits: 0,
+                        stats: TraversalStats::default(),
+                    });
+                row.measurements.push((set_name, t, total));
             }
         }
     }
@@ -127,9 +166,15 @@ pub fn measure_in_turn(
     Ok(rows)
 }
 
-/// One timed pass of `tracer` over every ray of `set`, on the current thread pool.
-fn trace(tracer: &dyn SingleRay, set: &RaySet, occlusion: bool) -> Measurement {
-    Measurement::timed(set.rays.len(), |i, stats| {
+/// One timed pass of `tracer` over the rays `range` of `set`, on the current thread pool.
+fn trace(
+    tracer: &dyn SingleRay,
+    set: &RaySet,
+    range: std::ops::Range<usize>,
+    occlusion: bool,
+) -> Measurement {
+    Measurement::timed(range.len(), |k, stats| {
+        let i = range.start + k;
         let (r, t_max) = (&set.rays[i], set.t_max[i]);
         if occlusion {
             tracer.occluded(r.origin, r.dir, t_max, stats)
