@@ -38,6 +38,8 @@ pub trait Simd: Copy {
     fn min(self, a: Self::V, b: Self::V) -> Self::V;
     /// `a > b ? a : b` (the second operand when either is NaN).
     fn max(self, a: Self::V, b: Self::V) -> Self::V;
+    /// Bit `i` set where `v[i]`, as a signed integer, is above zero.
+    fn positive(self, v: &[u32; 8]) -> u32;
     /// Bit `i` set where `a[i] ≤ b[i]` (false for NaN).
     fn le(self, a: Self::V, b: Self::V) -> u32;
     /// Bit `i` set where `a[i] < b[i]` (false for NaN).
@@ -98,6 +100,14 @@ impl Simd for Sse {
     #[inline(always)]
     fn max(self, a: Self::V, b: Self::V) -> Self::V {
         [a[0].fast_max(b[0]), a[1].fast_max(b[1])]
+    }
+
+    #[inline(always)]
+    fn positive(self, v: &[u32; 8]) -> u32 {
+        let [a, b]: [[i32; 4]; 2] = bytemuck::cast(*v);
+        let zero = wide::i32x4::ZERO;
+        let mask = |x: [i32; 4]| wide::i32x4::from(x).simd_gt(zero).to_bitmask();
+        mask(a) | mask(b) << 4
     }
 
     #[inline(always)]
@@ -188,6 +198,15 @@ mod avx {
         #[inline(always)]
         fn max(self, a: __m256, b: __m256) -> __m256 {
             unsafe { _mm256_max_ps(a, b) }
+        }
+
+        #[inline(always)]
+        fn positive(self, v: &[u32; 8]) -> u32 {
+            let v: __m256i = bytemuck::cast(*v);
+            unsafe {
+                let gt = _mm256_cmpgt_epi32(v, _mm256_setzero_si256());
+                _mm256_movemask_ps(_mm256_castsi256_ps(gt)) as u32
+            }
         }
 
         #[inline(always)]

@@ -6,7 +6,7 @@
 use super::lanes::{LANES, Lanes};
 #[cfg(target_arch = "x86_64")]
 use super::simd::Avx;
-use super::simd::{self, Simd, Sse};
+use super::simd::{Simd, Sse};
 use super::traverse::{AnyLeaf, ClosestLeaf};
 use super::{Cut, EMPTY, NodeW, WIDTH, WideBvh, build_options};
 use crate::triangle::{Shear, TriangleHit, edge_functions_f64};
@@ -324,11 +324,6 @@ pub(super) struct NearestInPacks<'a, S> {
 }
 
 impl<S: Simd> ClosestLeaf for NearestInPacks<'_, S> {
-    #[inline(always)]
-    fn prefetch(&self, first: u32) {
-        simd::prefetch(&self.packs[first as usize]);
-    }
-
     #[inline(always)]
     fn visit(
         &mut self,
