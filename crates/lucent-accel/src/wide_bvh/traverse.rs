@@ -111,6 +111,11 @@ type Entry = (u32, u32, f32);
 /// count`, lower `t_max` on a hit, and say whether there was one. A trait rather than a
 /// closure, so that its `#[inline(always)]` body is compiled into the AVX2 twin of the loop.
 pub(crate) trait ClosestLeaf {
+    /// Leaves cheap enough to test as soon as their node is visited, in slot order (triangle
+    /// packs); otherwise they are visited nearest first with the nodes (a top level's leaves
+    /// are whole meshes, where the order saves far more than it costs).
+    const AT_ONCE: bool = false;
+
     fn visit(
         &mut self,
         first: u32,
@@ -173,12 +178,21 @@ impl WideBvh {
             return false;
         }
         let pre = RayPre::new(ray);
-        // Nodes only: a node's leaves are tested when the node is visited.
         let mut stack: ArrayVec<Entry, STACK_SIZE> = ArrayVec::new();
         let (mut child, mut count) = (0u32, if entry.is_empty() { 0 } else { VIRTUAL });
         let mut hit = false;
         let mut visited = 0u64;
         loop {
+            if count != 0 && count != VIRTUAL {
+                // A leaf from the stack (never with `AT_ONCE`).
+                hit |= leaf.visit(child, count, &mut t_max, stats);
+                if let Some(next) = pop_nearer(&mut stack, t_max) {
+                    (child, count) = next;
+                    continue;
+                }
+                stats.nodes_visited += visited;
+                return hit;
+            }
             visited += 1;
             let node = if count == 0 {
                 &self.nodes[child as usize]
@@ -186,11 +200,15 @@ impl WideBvh {
                 &entry[child as usize]
             };
             let (mut mask, t) = pre.enter(s, node, t_max);
-            // The leaves entered are tested at once, in slot order, and then the children that
-            // start beyond the nearest hit are dropped. (Ordering the leaves by distance tests
-            // fewer of them, but costs more than it saves; pushing them as the nodes are pushed
-            // cost 3% more still.)
-            let leaves = mask & s.positive(&node.count);
+            // Leaves tested at once go in slot order, and then the children that start beyond
+            // the nearest hit are dropped. (Ordering the leaves by distance tests fewer of
+            // them, but costs more than it saves; pushing them as the nodes are pushed cost 3%
+            // more still.)
+            let leaves = if L::AT_ONCE {
+                mask & s.positive(&node.count)
+            } else {
+                0
+            };
             if leaves != 0 {
                 let entered = s.store(t);
                 let mut m = leaves;
@@ -239,15 +257,11 @@ impl WideBvh {
                 (child, count) = (hits[0].0, hits[0].1);
                 continue;
             }
-            // The next subtree that may still hold a nearer hit (or a tie, see CULL_SLACK).
-            loop {
-                let Some((c, k, t)) = stack.pop() else {
+            match pop_nearer(&mut stack, t_max) {
+                Some(next) => (child, count) = next,
+                None => {
                     stats.nodes_visited += visited;
                     return hit;
-                };
-                if t <= t_max * CULL_SLACK {
-                    (child, count) = (c, k);
-                    break;
                 }
             }
         }
@@ -473,7 +487,7 @@ impl WideBvh {
 }
 
 impl WideBvh {
-    /// Starts fetching child `i` of `node`, a node that will be visited later.
+    /// Starts fetching child `i` of `node` if it is a node; it will be visited later.
     #[inline(always)]
     fn prefetch_node(&self, node: &NodeW, i: usize) {
         // A beam's virtual nodes are few and were just built: in cache already.
@@ -481,6 +495,18 @@ impl WideBvh {
             simd::prefetch(&self.nodes[node.child[i] as usize]);
         }
     }
+}
+
+/// The next entry of the stack that may still hold a nearer hit (or a tie, see
+/// [`CULL_SLACK`]): (child, count).
+#[inline(always)]
+fn pop_nearer(stack: &mut ArrayVec<Entry, STACK_SIZE>, t_max: f32) -> Option<(u32, u32)> {
+    while let Some((c, k, t)) = stack.pop() {
+        if t <= t_max * CULL_SLACK {
+            return Some((c, k));
+        }
+    }
+    None
 }
 
 /// Insertion sort of at most eight entries by entry distance.

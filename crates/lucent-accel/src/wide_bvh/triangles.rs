@@ -324,6 +324,8 @@ pub(super) struct NearestInPacks<'a, S> {
 }
 
 impl<S: Simd> ClosestLeaf for NearestInPacks<'_, S> {
+    const AT_ONCE: bool = true;
+
     #[inline(always)]
     fn visit(
         &mut self,
