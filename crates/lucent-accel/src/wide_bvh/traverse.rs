@@ -184,7 +184,7 @@ impl WideBvh {
         let mut visited = 0u64;
         loop {
             if count != 0 && count != VIRTUAL {
-                // A leaf from the stack (never with `AT_ONCE`).
+                // A leaf from the stack (with `AT_ONCE`, only a beam's virtual nodes push them).
                 hit |= leaf.visit(child, count, &mut t_max, stats);
                 if let Some(next) = pop_nearer(&mut stack, t_max) {
                     (child, count) = next;
@@ -201,10 +201,11 @@ impl WideBvh {
             };
             let (mut mask, t) = pre.enter(s, node, t_max);
             // Leaves tested at once go in slot order, and then the children that start beyond
-            // the nearest hit are dropped. (Ordering the leaves by distance tests fewer of
+            // the nearest hit are dropped. (Not those of a beam's virtual nodes: there many
+            // leaves share a node, and nearest first tests 30% fewer triangles.) (Ordering the leaves by distance tests fewer of
             // them, but costs more than it saves; pushing them as the nodes are pushed cost 3%
             // more still.)
-            let leaves = if L::AT_ONCE {
+            let leaves = if L::AT_ONCE && count == 0 {
                 mask & s.positive(&node.count)
             } else {
                 0
