@@ -5,7 +5,9 @@
 //! bounds, random directions) and occlusion segments (random pairs of points in the bounds),
 //! on each requested thread count. The flat structures (brute force, bounding volumes) test
 //! every primitive for every ray, so they trace a subset of each set, sized to about 2^30
-//! primitive tests (at least 256 rays), and their rate is measured on that subset.
+//! primitive tests (at least 256 rays), and their rate is measured on that subset. On a
+//! scene of meshes alone the `wide` scene query is timed in turn with the triangle kernel and
+//! the peers ([`single_ray`]), the way the ratios between them are read.
 
 mod beam;
 #[cfg(any(feature = "bench-embree", feature = "bench-obvhs"))]
@@ -59,6 +61,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
             |n| n.to_string_lossy().into_owned(),
         );
         let mut peer_job = None;
+        // The `wide` scene and its row, when its queries are to be timed in turn with the
+        // kernel and the peers (a scene of meshes alone).
+        let mut in_turn: Option<(Scene, usize)> = None;
         for &kind in &kinds {
             let scene = load(path, kind)?;
             let report = scene.accel_report();
@@ -79,7 +84,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
                 measurements: vec![],
             };
             let flat = matches!(kind, AccelKind::BruteForce | AccelKind::BoundingVolumes);
-            for (name, set) in SETS.iter().zip(&sets) {
+            let meshes_only = counts.spheres == 0 && counts.planes == 0 && counts.triangles > 0;
+            let later = kind == AccelKind::Wide && meshes_only;
+            for (name, set) in SETS.iter().zip(&sets).filter(|_| !later) {
                 // Flat structures test every primitive as rendered (every instance's triangles).
                 let rendered = counts.triangles + counts.spheres;
                 let budget = if flat {
@@ -92,7 +99,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
                     row.measurements.push((name, t, m));
                 }
             }
-            eprintln!("  {}", row.summary());
+            if !later {
+                eprintln!("  {}", row.summary());
+            }
             rows.push(row);
             if kind == AccelKind::Wide {
                 for tile in beam::TILES {
@@ -125,25 +134,33 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
                 }
             }
             // Peers take a triangle soup: only scenes of meshes alone.
-            if peer_job.is_none()
-                && counts.spheres == 0
-                && counts.planes == 0
-                && counts.triangles > 0
-            {
+            if peer_job.is_none() && meshes_only {
                 peer_job = Some((scene.world_triangles(), sets));
+            }
+            if later {
+                in_turn = Some((scene, rows.len() - 1));
             }
         }
         if let Some((triangles, sets)) = &peer_job {
-            // The kernel and the peers (those compiled in), like for like and in turn.
-            let mut contenders = vec![single_ray::kernel(triangles)];
+            // The scene query, the kernel and the peers (those compiled in), in turn.
+            let mut contenders = vec![];
+            if let Some((scene, _)) = &in_turn {
+                contenders.push(single_ray::Contender {
+                    name: AccelKind::Wide.name().to_string(),
+                    build_ms: 0.0,
+                    info: None,
+                    tracer: Box::new(single_ray::SceneQuery(scene)),
+                });
+            }
+            contenders.push(single_ray::kernel(triangles));
             contenders.extend(build_peers(triangles)?);
-            rows.extend(single_ray::measure_in_turn(
-                &name,
-                triangles.len(),
-                &contenders,
-                sets,
-                &threads,
-            )?);
+            let mut measured =
+                single_ray::measure_in_turn(&name, triangles.len(), &contenders, sets, &threads)?;
+            if let Some((_, row)) = in_turn {
+                // The scene's row keeps its own build time and sizes.
+                rows[row].measurements = measured.remove(0).measurements;
+            }
+            rows.extend(measured);
         }
     }
     println!("{}", report::table(&rows, &threads));

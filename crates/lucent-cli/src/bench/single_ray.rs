@@ -59,6 +59,20 @@ impl SingleRay for Kernel {
     }
 }
 
+/// The whole scene query a render makes (the surface at the hit included), as a contender:
+/// its row keeps the scene's own build time and sizes.
+pub struct SceneQuery<'a>(pub &'a lucent::scene::Scene);
+
+impl SingleRay for SceneQuery<'_> {
+    fn closest(&self, origin: Vec3, dir: Vec3, _t_max: f32, stats: &mut TraversalStats) -> bool {
+        self.0.intersect(&Ray::new(origin, dir), stats).is_some()
+    }
+
+    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32, stats: &mut TraversalStats) -> bool {
+        self.0.occluded(&Ray::new(origin, dir), t_max, stats)
+    }
+}
+
 /// The kernel as a contender, built over world-space `triangles` (timed).
 pub fn kernel(triangles: &[[Vec3; 3]]) -> Contender<'static> {
     let positions: Vec<Vec3> = triangles.iter().flatten().copied().collect();
