@@ -5,7 +5,7 @@ use lucent::accel::TraversalStats;
 use std::fmt::Write;
 
 /// One timed run over a ray set.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Measurement {
     /// Rays traced.
     pub rays: u64,
@@ -49,6 +49,15 @@ impl Measurement {
             hits,
             stats,
         }
+    }
+
+    /// Two runs as one: rays, time, hits and work added.
+    pub fn plus(mut self, other: Measurement) -> Measurement {
+        self.rays += other.rays;
+        self.seconds += other.seconds;
+        self.hits += other.hits;
+        self.stats += other.stats;
+        self
     }
 
     /// Million rays per second.

@@ -1,15 +1,17 @@
 //! Like for like: lucent's triangle kernel and the peers, each given a ray as an origin, a
 //! direction and a segment length, as the peers' single-ray queries take them, on the same
-//! rays, measured in turn so that a noisy machine cannot favour whoever ran first.
+//! rays, measured in turn so that a noisy machine cannot favour whoever ran first. lucent's
+//! whole scene query (which also works out the surface at the hit) takes the same turns.
 //!
 //! Each contender builds its own ray from (origin, direction) inside the timed loop — lucent's
 //! kernel included, its reciprocal direction and all — and answers hit or miss (closest hit)
 //! or blocked or not (occlusion). Every set is cut into [`CHUNKS`] runs of consecutive rays,
 //! and each chunk is traced by the contenders one after another, [`ROUNDS`] times over: a
 //! contender's time is the sum over chunks of its fastest time on each; who goes first on a
-//! chunk (and finds its rays out of cache) changes from chunk to chunk and round to round. A machine that slows
-//! for a moment then slows every contender on the same chunk (they run within a few
-//! hundredths of a second of each other), and the slow round of that chunk does not count.
+//! chunk (and finds its rays out of cache) changes from chunk to chunk and round to round. A
+//! machine that slows for a moment then slows every contender on the same chunk (they run
+//! within a few hundredths of a second of each other), and the slow round of that chunk does
+//! not count.
 
 use super::rays::RaySet;
 use super::report::{self, Measurement, Row, SETS};
@@ -154,22 +156,7 @@ pub fn measure_in_turn(
                 let total = best
                     .into_iter()
                     .map(|m| m.expect("ROUNDS > 0"))
-                    .reduce(|a, b| Measurement {
-                        rays: a.rays + b.rays,
-                        seconds: a.seconds + b.seconds,
-                        hits: a.hits + b.hits,
-                        stats: {
-                            let mut s = a.stats;
-                            s += b.stats;
-                            s
-                        },
-                    })
-                    .unwrap_or(Measurement {
-                        rays: 0,
-                        seconds: 0.0,
-                        hits: 0,
-                        stats: TraversalStats::default(),
-                    });
+                    .fold(Measurement::default(), Measurement::plus);
                 row.measurements.push((set_name, t, total));
             }
         }
