@@ -64,6 +64,12 @@ impl Shear {
         } else {
             (NEXT[kz], AFTER[kz])
         };
+        Self::with_axes(d, [kx, ky, kz])
+    }
+
+    /// The shear of direction `d` onto +z once its axes are chosen.
+    #[inline(always)]
+    fn with_axes(d: [f32; 3], [kx, ky, kz]: [usize; 3]) -> Self {
         let sz = 1.0 / d[kz];
         Self {
             kx,
@@ -148,15 +154,7 @@ mod tests {
         if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
-        let sz = 1.0 / d[kz];
-        Shear {
-            kx,
-            ky,
-            kz,
-            sx: d[kx] * sz,
-            sy: d[ky] * sz,
-            sz,
-        }
+        Shear::with_axes(d.to_array(), [kx, ky, kz])
     }
 
     #[test]

@@ -30,6 +30,25 @@ fn film(scene: &lucent::scene::Scene, settings: &RenderSettings, beam: bool) -> 
     render(scene, &settings, None, &hooks).unwrap().film
 }
 
+/// An example scene file at `width`×`height`.
+fn small(path: &std::path::Path, width: u32, height: u32) -> SceneFile {
+    let mut file = SceneFile::read_with(path, &LoadOptions::default()).unwrap();
+    file.desc.image.width = Spanned::new(0..0, width);
+    file.desc.image.height = Spanned::new(0..0, height);
+    file
+}
+
+/// Renders with beams on and off and holds the two films to be the same.
+fn assert_beams_change_nothing(
+    scene: &lucent::scene::Scene,
+    settings: &RenderSettings,
+    what: &str,
+) {
+    let on = film(scene, settings, true);
+    let off = film(scene, settings, false);
+    assert_same(&on, &off, what);
+}
+
 fn assert_same(a: &Film, b: &Film, what: &str) {
     let (w, h) = (a.width(), a.height());
     for y in 0..h {
@@ -48,16 +67,11 @@ fn assert_same(a: &Film, b: &Film, what: &str) {
 #[test]
 fn every_example_renders_the_same_with_and_without_beams() {
     for path in examples() {
-        let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
-        file.desc.image.width = Spanned::new(0..0, 56);
-        file.desc.image.height = Spanned::new(0..0, 40);
+        let mut file = small(&path, 56, 40);
         let spp = (*file.desc.image.samples.get_ref()).min(2);
         file.desc.image.samples = Spanned::new(0..0, spp);
         let loaded = file.build().unwrap();
-        let name = path.display().to_string();
-        let on = film(&loaded.scene, &loaded.settings, true);
-        let off = film(&loaded.scene, &loaded.settings, false);
-        assert_same(&on, &off, &name);
+        assert_beams_change_nothing(&loaded.scene, &loaded.settings, &path.display().to_string());
     }
 }
 
@@ -71,9 +85,7 @@ fn every_example_renders_the_same_under_whitted_with_and_without_beams() {
         .into_iter()
         .flat_map(|p| ["wide", "bvh"].map(|a| (p.clone(), a)))
     {
-        let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
-        file.desc.image.width = Spanned::new(0..0, 61);
-        file.desc.image.height = Spanned::new(0..0, 40);
+        let mut file = small(&path, 61, 40);
         file.desc.render.accelerator = Spanned::new(0..0, accel.to_string());
         let loaded = file.build().unwrap();
         let settings = RenderSettings {
@@ -82,9 +94,7 @@ fn every_example_renders_the_same_under_whitted_with_and_without_beams() {
             ..loaded.settings
         };
         let name = format!("{} ({accel})", path.display());
-        let on = film(&loaded.scene, &settings, true);
-        let off = film(&loaded.scene, &settings, false);
-        assert_same(&on, &off, &name);
+        assert_beams_change_nothing(&loaded.scene, &settings, &name);
     }
 }
 
@@ -101,9 +111,7 @@ fn wide_filters_and_jittered_samples_render_the_same_with_beams() {
             filter_sampling,
             ..loaded.settings
         };
-        let on = film(&loaded.scene, &settings, true);
-        let off = film(&loaded.scene, &settings, false);
-        assert_same(&on, &off, &format!("{filter_sampling:?}"));
+        assert_beams_change_nothing(&loaded.scene, &settings, &format!("{filter_sampling:?}"));
     }
 }
 
@@ -115,10 +123,7 @@ fn adaptive_and_quadtree_sampling_render_the_same_with_beams() {
     use lucent::render::Sampling;
     use lucent::schedule::adaptive::Adaptive;
     for path in examples() {
-        let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
-        file.desc.image.width = Spanned::new(0..0, 45);
-        file.desc.image.height = Spanned::new(0..0, 34);
-        let loaded = file.build().unwrap();
+        let loaded = small(&path, 45, 34).build().unwrap();
         for block in [0, 2] {
             let settings = RenderSettings {
                 integrator: Integrator::Whitted(Whitted::default()),
@@ -130,9 +135,7 @@ fn adaptive_and_quadtree_sampling_render_the_same_with_beams() {
                 ..loaded.settings
             };
             let name = format!("{} (adaptive, blocks of {})", path.display(), 1 << block);
-            let on = film(&loaded.scene, &settings, true);
-            let off = film(&loaded.scene, &settings, false);
-            assert_same(&on, &off, &name);
+            assert_beams_change_nothing(&loaded.scene, &settings, &name);
         }
     }
 }

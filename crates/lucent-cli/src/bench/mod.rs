@@ -144,11 +144,16 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
         if let Some((triangles, sets)) = &peer_job {
             // The scene query, the kernel and the peers (those compiled in), in turn.
             let mut contenders = vec![];
-            if let Some((scene, _)) = &in_turn {
+            if let Some((scene, row)) = &in_turn {
+                let row = &rows[*row];
                 contenders.push(single_ray::Contender {
-                    name: AccelKind::Wide.name().to_string(),
-                    build_ms: 0.0,
-                    info: None,
+                    name: row.accel.clone(),
+                    build_ms: row.build_ms,
+                    info: row
+                        .nodes
+                        .zip(row.depth)
+                        .zip(row.bytes_per_prim)
+                        .map(|((n, d), b)| (n, d, b)),
                     tracer: Box::new(single_ray::SceneQuery(scene)),
                 });
             }
@@ -157,7 +162,6 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<ExitCode> {
             let mut measured =
                 single_ray::measure_in_turn(&name, triangles.len(), &contenders, sets, &threads)?;
             if let Some((_, row)) = in_turn {
-                // The scene's row keeps its own build time and sizes.
                 rows[row].measurements = measured.remove(0).measurements;
             }
             rows.extend(measured);

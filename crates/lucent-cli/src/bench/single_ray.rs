@@ -61,8 +61,7 @@ impl SingleRay for Kernel {
     }
 }
 
-/// The whole scene query a render makes (the surface at the hit included), as a contender:
-/// its row keeps the scene's own build time and sizes.
+/// The whole scene query a render makes (the surface at the hit included), as a contender.
 pub struct SceneQuery<'a>(pub &'a lucent::scene::Scene);
 
 impl SingleRay for SceneQuery<'_> {
