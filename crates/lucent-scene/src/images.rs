@@ -1,5 +1,6 @@
 //! Image files for textures and environments: PNG, JPEG, EXR, HDR, read into linear RGB.
 
+use crate::desc::texture::Encoding;
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
 use lucent::Rgb;
@@ -15,9 +16,14 @@ const MAX_DECODE_BYTES: u64 = 1 << 30;
 /// decoding, since the texels end as 12-byte float triples.
 pub const MAX_TEXELS: u64 = 1 << 25;
 
-/// Reads the image at `path`: 8-bit and 16-bit images are taken as sRGB-encoded, float images
-/// (EXR, HDR) as linear. Its bytes are added to `inputs`.
-pub fn read_image(path: &Path, inputs: &mut Fingerprint) -> Result<ImageTexture, LoadError> {
+/// Reads the image at `path`: 8-bit and 16-bit images are decoded by `encoding` (sRGB or
+/// linear), float images (EXR, HDR) are linear; an alpha channel is kept (always linear). Its
+/// bytes are added to `inputs`.
+pub fn read_image(
+    path: &Path,
+    encoding: Encoding,
+    inputs: &mut Fingerprint,
+) -> Result<ImageTexture, LoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
     inputs.add(&bytes);
@@ -43,34 +49,52 @@ pub fn read_image(path: &Path, inputs: &mut Fingerprint) -> Result<ImageTexture,
     let decoded = image::ImageDecoder::set_limits(&mut decoder, limits)
         .and_then(|()| image::DynamicImage::from_decoder(decoder))
         .map_err(|e| LoadError::file(path, format!("cannot decode the image: {e}")))?;
-    let float = matches!(
-        decoded.color(),
-        image::ColorType::Rgb32F | image::ColorType::Rgba32F
-    );
-    let texels: Vec<Rgb> = if float {
-        decoded
-            .into_rgb32f()
-            .pixels()
-            .map(|p| Rgb::from(p.0))
-            .collect()
-    } else if matches!(
-        decoded.color(),
+    let color = decoded.color();
+    let float = matches!(color, image::ColorType::Rgb32F | image::ColorType::Rgba32F);
+    let wide = matches!(
+        color,
         image::ColorType::L16
             | image::ColorType::La16
             | image::ColorType::Rgb16
             | image::ColorType::Rgba16
-    ) {
-        let decode = |v: u16| srgb_to_linear(f32::from(v) / 65535.0);
-        decoded
-            .into_rgb16()
-            .pixels()
-            .map(|p| Rgb::from(p.0.map(decode)))
+    );
+    let has_alpha = color.has_alpha();
+    let srgb = encoding == Encoding::Srgb;
+    let mut alpha = Vec::new();
+    let texels: Vec<Rgb> = if float {
+        let img = decoded.into_rgba32f();
+        if has_alpha {
+            alpha = img.pixels().map(|p| p.0[3].clamp(0.0, 1.0)).collect();
+        }
+        img.pixels()
+            .map(|p| Rgb::new(p.0[0], p.0[1], p.0[2]))
+            .collect()
+    } else if wide {
+        let decode = |v: u16| {
+            let x = f32::from(v) / 65535.0;
+            if srgb { srgb_to_linear(x) } else { x }
+        };
+        let img = decoded.into_rgba16();
+        if has_alpha {
+            alpha = img.pixels().map(|p| f32::from(p.0[3]) / 65535.0).collect();
+        }
+        img.pixels()
+            .map(|p| Rgb::new(decode(p.0[0]), decode(p.0[1]), decode(p.0[2])))
             .collect()
     } else {
-        decoded
-            .into_rgb8()
-            .pixels()
-            .map(|p| Rgb::from(p.0.map(srgb8_to_linear)))
+        let decode = |v: u8| {
+            if srgb {
+                srgb8_to_linear(v)
+            } else {
+                f32::from(v) / 255.0
+            }
+        };
+        let img = decoded.into_rgba8();
+        if has_alpha {
+            alpha = img.pixels().map(|p| f32::from(p.0[3]) / 255.0).collect();
+        }
+        img.pixels()
+            .map(|p| Rgb::new(decode(p.0[0]), decode(p.0[1]), decode(p.0[2])))
             .collect()
     };
     if texels
@@ -82,5 +106,12 @@ pub fn read_image(path: &Path, inputs: &mut Fingerprint) -> Result<ImageTexture,
             "the image holds values that are not finite",
         ));
     }
-    ImageTexture::new(w, h, texels).ok_or_else(|| LoadError::file(path, "the image is empty"))
+    let image = ImageTexture::new(w, h, texels)
+        .ok_or_else(|| LoadError::file(path, "the image is empty"))?;
+    if alpha.is_empty() {
+        return Ok(image);
+    }
+    image
+        .with_alpha(alpha)
+        .ok_or_else(|| LoadError::file(path, "the image's alpha channel does not match its size"))
 }

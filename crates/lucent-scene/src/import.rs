@@ -3,8 +3,8 @@
 //! a scene without a camera or lights gets.
 
 use crate::desc::{
-    CameraDesc, Color, DiffuseDesc, Finite, LightDesc, LightKind, MaterialDesc, ObjectDesc,
-    ObjectKind, SceneDesc, Vector,
+    CameraDesc, Color, Finite, LightDesc, LightKind, MaterialDesc, ObjectDesc, ObjectKind,
+    SceneDesc, Vector,
 };
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
@@ -83,7 +83,7 @@ pub fn add_default_light(desc: &mut SceneDesc) {
 pub fn default_material(name: &str) -> MaterialDesc {
     let mut m = MaterialDesc::named(name);
     m.ka = Some(Color(Rgb::gray(0.8)));
-    m.kd = Some(DiffuseDesc::Solid(Rgb::gray(0.8)));
+    m.kd = Some(crate::desc::TextureDesc::gray(0.8));
     m.ks = Some(Color(Rgb::gray(0.2)));
     m.shininess = Some(Spanned::new(0..0, Finite(30.0)));
     m

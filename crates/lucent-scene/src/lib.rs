@@ -251,11 +251,8 @@ impl SceneFile {
             }
         }
         for m in &mut d.materials {
-            let m = m.get_mut();
-            for t in [&mut m.kd, &mut m.reflectance].into_iter().flatten() {
-                if let desc::DiffuseDesc::Image(f) = t {
-                    rename(f);
-                }
+            for t in m.get_mut().textures_mut() {
+                t.files_mut(&mut |f| rename(f));
             }
         }
         self.base_dir = dir.to_path_buf();

@@ -14,7 +14,7 @@
 //! With no `illum`, 2 is assumed when `Ks` is given, else 1. `Ke` becomes `emission`, `map_Kd`
 //! an image texture (its options are skipped; the last word is the file).
 
-use crate::desc::{Color, DiffuseDesc, Finite, MaterialDesc};
+use crate::desc::{Color, Finite, ImageMapDesc, MaterialDesc, TextureDesc};
 use crate::error::LoadError;
 use lucent::Rgb;
 use std::path::Path;
@@ -138,8 +138,8 @@ impl MtlMaterial {
         let illum = self.illum.unwrap_or(if self.ks.is_some() { 2 } else { 1 });
         let kd = self.kd.unwrap_or(Rgb::gray(0.8));
         d.kd = Some(match texture_path {
-            Some(file) => DiffuseDesc::Image(file),
-            None => DiffuseDesc::Solid(kd),
+            Some(file) => TextureDesc::Image(ImageMapDesc::new(file)),
+            None => TextureDesc::Solid(kd),
         });
         if illum >= 1 {
             d.ka = c(self.ka.unwrap_or(kd));
@@ -167,7 +167,7 @@ impl MtlMaterial {
             ));
         }
         if let Some(ke) = self.ke.filter(|k| !k.is_black()) {
-            d.emission = c(ke);
+            d.emission = Some(TextureDesc::Solid(ke));
         }
         d
     }
@@ -194,7 +194,7 @@ mod tests {
         .unwrap();
         let mut warnings = vec![];
         let mirror = mats[0].to_desc("m", None, &mut warnings);
-        assert_eq!(mirror.kd, Some(DiffuseDesc::Solid(Rgb::new(0.1, 0.2, 0.3))));
+        assert_eq!(mirror.kd, Some(TextureDesc::Solid(Rgb::new(0.1, 0.2, 0.3))));
         assert_eq!(mirror.kr, Some(Color(Rgb::gray(0.9))));
         assert_eq!(mirror.shininess.map(|s| s.into_inner().0), Some(50.0));
         assert!(mirror.kt.is_none());
@@ -204,8 +204,11 @@ mod tests {
         assert_eq!(glass.kr, Some(Color(Rgb::gray(0.1))));
         assert_eq!(mats[2].texture(), Some("wood.png"));
         let lamp = mats[2].to_desc("l", Some("wood.png".into()), &mut warnings);
-        assert_eq!(lamp.emission, Some(Color(Rgb::gray(4.0))));
-        assert_eq!(lamp.kd, Some(DiffuseDesc::Image("wood.png".into())));
+        assert_eq!(lamp.emission, Some(TextureDesc::Solid(Rgb::gray(4.0))));
+        assert_eq!(
+            lamp.kd,
+            Some(TextureDesc::Image(ImageMapDesc::new("wood.png")))
+        );
         assert!(warnings.is_empty());
     }
 

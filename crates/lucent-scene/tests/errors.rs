@@ -247,7 +247,7 @@ fn bad_checker() {
     );
     assert_error(&text, 6, 6, "checker size must be positive");
     let text = format!("{CAMERA}[[material]]\nname = \"c\"\nkd = {{ marble = 1 }}\n");
-    assert_error(&text, 6, 6, "unknown field `marble`");
+    assert_error(&text, 6, 6, "unknown texture key `marble`");
 }
 
 #[test]

@@ -517,14 +517,14 @@ fn materials_lights_and_camera_are_described() {
     assert_eq!(materials[0].kind(), MaterialKind::Diffuse);
     assert_eq!(
         materials[0].reflectance,
-        Some(lucent_scene::desc::DiffuseDesc::Image(
-            "wood grain.png".into()
+        Some(lucent_scene::desc::TextureDesc::Image(
+            lucent_scene::desc::ImageMapDesc::new("wood grain.png")
         ))
     );
     assert_eq!(materials[1].kind(), MaterialKind::RoughDielectric);
     assert_eq!(
         materials[2].reflectance,
-        Some(lucent_scene::desc::DiffuseDesc::Solid(lucent::Rgb::gray(
+        Some(lucent_scene::desc::TextureDesc::Solid(lucent::Rgb::gray(
             0.5
         )))
     );

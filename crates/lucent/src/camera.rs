@@ -162,6 +162,39 @@ impl Camera {
         self.forward + ndc_x * self.right + ndc_y * self.up
     }
 
+    /// How far a surface point moves in the scene from one pixel to the next, along the
+    /// image's x and y: the rays through the neighbouring pixels of the one that sees `p`, met
+    /// with the plane through `p` perpendicular to `n` (pbrt-v4's `Approximate_dp_dxy`, exact
+    /// for a camera ray through a pinhole; a thin lens counts as its pinhole). Texture lookups
+    /// filter over this footprint. Zero vectors where the plane is seen edge-on or the point is
+    /// behind the camera.
+    pub fn footprint(&self, p: Vec3, n: Vec3) -> [Vec3; 2] {
+        let to_p = p - self.eye;
+        let depth = to_p.dot(self.forward);
+        if depth.is_nan() || depth <= 0.0 {
+            return [Vec3::ZERO; 2];
+        }
+        // The direction to p in the form of `direction` (forward component 1), and the steps
+        // of one pixel along x and y.
+        let d = to_p / depth;
+        let steps = [
+            self.right * (2.0 / self.width as f32),
+            self.up * (-2.0 / self.height as f32),
+        ];
+        let plane = n.dot(to_p);
+        steps.map(|step| {
+            let dir = d + step;
+            let denom = n.dot(dir);
+            let t = plane / denom;
+            let moved = self.eye + dir * t - p;
+            if denom.abs() > 1e-6 * dir.length() && moved.is_finite() {
+                moved
+            } else {
+                Vec3::ZERO
+            }
+        })
+    }
+
     /// True for a pinhole: every ray starts at the eye.
     pub fn is_pinhole(&self) -> bool {
         self.lens_radius == 0.0
@@ -229,6 +262,31 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_footprint_is_the_distance_between_neighbouring_pixels_rays() {
+        // 90° across 100 pixels: at distance 10 straight ahead a pixel is 0.2 wide.
+        let c = Camera::new(Vec3::ZERO, -Vec3::Z, Vec3::Y, 90.0, 100, 100).unwrap();
+        let p = Vec3::new(0.0, 0.0, -10.0);
+        let [dx, dy] = c.footprint(p, Vec3::Z);
+        assert!((dx - Vec3::new(0.2, 0.0, 0.0)).length() < 1e-4, "{dx}");
+        assert!((dy - Vec3::new(0.0, -0.2, 0.0)).length() < 1e-4, "{dy}");
+        // The same ray hitting the pixel's neighbour's point: the footprint is that step.
+        let hit = c.ray(50.5, 50.5);
+        let q = hit.at(10.0 / hit.dir.dot(-Vec3::Z));
+        let next = c.ray(51.5, 50.5);
+        let q1 = next.at(10.0 / next.dir.dot(-Vec3::Z));
+        let [dx, _] = c.footprint(q, Vec3::Z);
+        assert!((q + dx - q1).length() < 1e-3, "{} vs {}", q + dx, q1);
+        // A floor seen at a glancing angle stretches the footprint along the view.
+        let floor = Vec3::new(0.0, -1.0, -10.0);
+        let [_, dy] = c.footprint(floor, Vec3::Y);
+        assert!(dy.length() > 1.0, "{dy}");
+        assert_eq!(
+            c.footprint(Vec3::new(0.0, 0.0, 5.0), Vec3::Z),
+            [Vec3::ZERO; 2]
+        );
+    }
 
     fn camera(width: u32, height: u32) -> Camera {
         Camera::new(

@@ -1,6 +1,6 @@
 //! Linear RGB radiance and reflectance triples.
 
-use std::ops::{Add, AddAssign, Div, Mul, MulAssign};
+use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Sub};
 
 /// A linear RGB triple: a radiance, an intensity or a per-channel coefficient.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -47,6 +47,35 @@ impl Rgb {
     /// The channels as an array.
     pub fn to_array(self) -> [f32; 3] {
         [self.r, self.g, self.b]
+    }
+
+    /// The mean of the three channels.
+    pub fn mean(self) -> f32 {
+        (self.r + self.g + self.b) / 3.0
+    }
+
+    /// The luminance of linear sRGB primaries (Rec. 709 weights, as Mitsuba's `luminance`).
+    pub fn luminance(self) -> f32 {
+        0.212_671 * self.r + 0.715_160 * self.g + 0.072_169 * self.b
+    }
+
+    /// `self·(1 − t) + other·t`.
+    pub fn lerp(self, other: Rgb, t: f32) -> Rgb {
+        self * (1.0 - t) + other * t
+    }
+
+    /// Each channel clamped to `[lo, hi]`.
+    pub fn clamp(self, lo: f32, hi: f32) -> Rgb {
+        Rgb::new(
+            self.r.clamp(lo, hi),
+            self.g.clamp(lo, hi),
+            self.b.clamp(lo, hi),
+        )
+    }
+
+    /// `f` applied to each channel.
+    pub fn map(self, f: impl Fn(f32) -> f32) -> Rgb {
+        Rgb::new(f(self.r), f(self.g), f(self.b))
     }
 
     /// `self^e` per channel.
@@ -98,6 +127,13 @@ impl Mul<Rgb> for f32 {
     type Output = Rgb;
     fn mul(self, c: Rgb) -> Rgb {
         c * self
+    }
+}
+
+impl Sub for Rgb {
+    type Output = Rgb;
+    fn sub(self, o: Rgb) -> Rgb {
+        Rgb::new(self.r - o.r, self.g - o.g, self.b - o.b)
     }
 }
 

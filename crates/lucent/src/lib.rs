@@ -30,6 +30,7 @@ pub mod scene;
 pub mod schedule;
 pub mod shape;
 pub mod spawn;
+pub mod special;
 pub mod study;
 pub mod texture;
 

@@ -116,6 +116,8 @@ mod tests {
             surface: SurfaceId::Sphere(3),
             bary: [0.0; 3],
             error: Vec3::ZERO,
+            dpdu: Vec3::X,
+            dpdv: Vec3::Z,
         };
         let (out, leaving) = spawn_ray(&hit, Vec3::new(1.0, 1.0, 0.0).normalize());
         assert!(out.origin.y > 1.0 && leaving.outward);

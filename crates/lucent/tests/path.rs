@@ -6,18 +6,19 @@ mod common;
 use glam::Vec2;
 use glam::Vec3;
 use lucent::Rgb;
-use lucent::bsdf::Transport;
+use lucent::bsdf::{Bsdf, Distribution, Microfacet, Transport};
 use lucent::camera::Camera;
 use lucent::film::Film;
 use lucent::film::filter::Filter;
 use lucent::film::splat::FilterSampling;
 use lucent::integrator::{Integrator, PathTracer};
-use lucent::material::{Material, Surface};
+use lucent::material::{Material, Roughness, Surface};
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent::sampling::uniform;
 use lucent::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::{Mesh, Sphere};
+use lucent::texture::Texture;
 use std::sync::atomic::AtomicBool;
 
 fn film_of(scene: &Scene, spp: u32, threads: usize, max_depth: u32) -> Film {
@@ -116,9 +117,9 @@ fn glass_and_a_white_metal_keep_the_furnace_white() {
     let glass = Material {
         surface: Surface::Dielectric {
             eta: 1.5,
-            specular: Rgb::WHITE,
-            transmittance: Rgb::WHITE,
-            alpha: 0.0,
+            specular: Texture::from(1.0),
+            transmittance: Texture::from(1.0),
+            roughness: None,
         },
         ..Material::default()
     };
@@ -133,14 +134,19 @@ fn glass_and_a_white_metal_keep_the_furnace_white() {
     let alpha = 0.3;
     let metal = Material {
         surface: Surface::Conductor {
-            eta: Rgb::BLACK,
-            k: Rgb::gray(1e4),
-            specular: Rgb::WHITE,
-            alpha,
+            eta: Texture::from(0.0),
+            k: Texture::from(1e4),
+            specular: Texture::from(1.0),
+            roughness: Some(Roughness::isotropic(Distribution::Ggx, alpha)),
         },
         ..Material::default()
     };
-    let bsdf = metal.bsdf(Rgb::BLACK);
+    let bsdf = Bsdf::RoughConductor {
+        eta: Rgb::BLACK,
+        k: Rgb::gray(1e4),
+        specular: Rgb::WHITE,
+        microfacet: Microfacet::ggx(alpha),
+    };
     let n = 1_000_000u64;
     let albedo = (0..n)
         .map(|i| {
@@ -192,7 +198,9 @@ fn a_rectangular_light_gives_lamberts_irradiance() {
     let floor = b.material(Material::lambertian(Rgb::gray(rho)));
     let light = b.material(Material {
         ke: Rgb::gray(radiance),
-        surface: Surface::Diffuse,
+        surface: Surface::Diffuse {
+            reflectance: Texture::from(0.0),
+        },
         ..Material::default()
     });
     let s = 20.0;

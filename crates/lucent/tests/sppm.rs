@@ -15,6 +15,7 @@ use lucent::material::{Material, Surface};
 use lucent::render::RenderSettings;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::{Plane, Sphere};
+use lucent::texture::Texture;
 
 fn film_of(scene: &Scene, integrator: Integrator, spp: u32, threads: usize) -> Film {
     let settings = RenderSettings {
@@ -31,9 +32,9 @@ fn glass() -> Material {
     Material {
         surface: Surface::Dielectric {
             eta: 1.5,
-            specular: Rgb::WHITE,
-            transmittance: Rgb::WHITE,
-            alpha: 0.0,
+            specular: Texture::from(1.0),
+            transmittance: Texture::from(1.0),
+            roughness: None,
         },
         ..Material::default()
     }
@@ -144,7 +145,9 @@ fn room(size: u32) -> Scene {
     let red = b.material(Material::lambertian(Rgb::new(0.7, 0.1, 0.1)));
     let lamp = b.material(Material {
         ke: Rgb::gray(10.0),
-        surface: Surface::Diffuse,
+        surface: Surface::Diffuse {
+            reflectance: Texture::from(0.0),
+        },
         ..Material::default()
     });
     let ball = b.material(glass());

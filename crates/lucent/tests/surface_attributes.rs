@@ -13,7 +13,7 @@ use lucent::material::Material;
 use lucent::sampling::sobol::Sampler;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::Mesh;
-use lucent::texture::{ImageTexture, Texture};
+use lucent::texture::{ImageMap, ImageTexture, Texture};
 
 /// The triangle (0,0,0), (1,0,0), (0,1,0), facing +z, with per-vertex attributes.
 fn triangle() -> Mesh {
@@ -138,7 +138,7 @@ fn image_textures_are_looked_up_at_the_uvs_and_tinted_by_vertex_colours() {
     let mut b = SceneBuilder::new(any_camera());
     let img = b.image(image);
     let m = b.material(Material {
-        kd: Texture::Image(img),
+        kd: Texture::Image(ImageMap::new(img)),
         ..Material::default()
     });
     b.mesh(mesh, m);
@@ -158,7 +158,7 @@ fn image_textures_are_looked_up_at_the_uvs_and_tinted_by_vertex_colours() {
     // A material naming an image that does not exist is refused.
     let mut b = SceneBuilder::new(any_camera());
     b.material(Material {
-        kd: Texture::Image(3),
+        kd: Texture::Image(ImageMap::new(3)),
         ..Material::default()
     });
     assert!(b.build().unwrap_err().to_string().contains("image 3"));
@@ -173,7 +173,7 @@ fn spheres_are_textured_at_their_lat_long_coordinates() {
     let mut b = SceneBuilder::new(any_camera());
     let img = b.image(image);
     let m = b.material(Material {
-        kd: Texture::Image(img),
+        kd: Texture::Image(ImageMap::new(img)),
         ..Material::default()
     });
     b.sphere(

@@ -1,6 +1,7 @@
 //! `[[light]]` tables, and area lights (emitting objects) under the classic integrators.
 
 use super::{Context, refuse_keys, required, span};
+use crate::desc::texture::Encoding;
 use crate::desc::{FalloffName, LightKind, SceneDesc};
 use crate::error::LoadError;
 use glam::Vec3;
@@ -123,7 +124,8 @@ pub fn add_lights(
                 // surfaces as ambient light of its mean radiance over directions (no shadows).
                 let mean = match &d.file {
                     Some(file) => {
-                        let id = ctx.image(file.get_ref(), file.span(), intensity)?;
+                        let id =
+                            ctx.image(file.get_ref(), file.span(), intensity, Encoding::Srgb)?;
                         ctx.builder.environment(Some(id));
                         ctx.builder
                             .stored_image(id)

@@ -1,282 +1,527 @@
-//! From a `[[material]]` description to the renderer's material: the classic coefficients as
-//! given (`whitted`), or the nearest classic equivalent of a physically based kind (the table
-//! is in `docs/scene-format.md`).
+//! From `[[material]]` descriptions to the renderer's materials: the classic coefficients as
+//! given (`whitted`), or a physically based surface whose nearest classic coefficients the
+//! renderer derives (`lucent::material`, the table in `docs/scene-format.md`). Materials may
+//! refer to others (`blend`'s `materials`, `back`): their surfaces are built first, once.
 
+use super::textures::Slot;
 use super::{Context, refuse_keys, span};
-use crate::desc::{Color, DiffuseDesc, MaterialDesc, MaterialKind};
+use crate::desc::{Color, Finite, MaterialDesc, MaterialKind, TextureDesc};
 use crate::error::LoadError;
 use lucent::Rgb;
-use lucent::material::{Material, Surface};
+use lucent::bsdf::{Distribution, Microfacet, RoughCoat};
+use lucent::material::{Approximation, Material, Roughness, Surface, metals};
 use lucent::texture::Texture;
+use std::collections::HashMap;
+use std::ops::Range;
+use std::sync::Arc;
 use toml::Spanned;
 
-/// Named conductors: per-channel (R, G, B) index of refraction η and extinction k, sampled at
-/// about 650, 550 and 450 nm from measured spectra (as the RGB renderers pbrt and Mitsuba use).
-const METALS: [(&str, [f32; 3], [f32; 3]); 4] = [
-    ("Au", [0.143, 0.374, 1.442], [3.983, 2.385, 1.603]),
-    ("Ag", [0.155, 0.117, 0.138], [4.828, 3.122, 2.147]),
-    ("Cu", [0.200, 0.924, 1.102], [3.912, 2.452, 2.142]),
-    ("Al", [1.657, 0.880, 0.521], [9.224, 6.270, 4.837]),
+/// Deepest chain of materials referring to others (`blend` of `blend` …).
+const MAX_NESTING: usize = 16;
+
+/// The keys every kind takes.
+const COMMON: &[&str] = &[
+    "emission",
+    "opacity",
+    "normal_map",
+    "normal_scale",
+    "bump_map",
+    "bump_scale",
+    "two_sided",
+    "back",
+    "vertex_colors",
 ];
 
-/// Why a material is rendered other than as written, for one warning line per reason.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Approximation {
-    /// A rough surface is drawn with a Phong highlight (or as smooth glass).
-    Rough,
-}
-
-/// Normal-incidence Fresnel reflectance of a dielectric interface with relative index `eta`.
-fn dielectric_f0(eta: f32) -> f32 {
-    let r = (eta - 1.0) / (eta + 1.0);
-    r * r
-}
-
-/// Normal-incidence Fresnel reflectance of a conductor, per channel.
-fn conductor_f0(eta: Rgb, k: Rgb) -> Rgb {
-    let f = |n: f32, k: f32| ((n - 1.0) * (n - 1.0) + k * k) / ((n + 1.0) * (n + 1.0) + k * k);
-    Rgb::new(f(eta.r, k.r), f(eta.g, k.g), f(eta.b, k.b))
-}
-
-/// The Phong exponent whose lobe matches GGX roughness `alpha` (Walter et al. 2007).
-fn phong_exponent(alpha: f32) -> f32 {
-    (2.0 / (alpha * alpha) - 2.0).max(1.0)
-}
-
-/// The renderer's material for `m`, and what had to be approximated.
-pub fn whitted_material(
-    m: &Spanned<MaterialDesc>,
-    ctx: &mut Context,
-) -> Result<(Material, Option<Approximation>), LoadError> {
-    let table = m.span();
-    let d = m.get_ref();
-    let kind = d.kind();
-    let keys = [
-        ("ka", d.ka.map(|_| table.clone())),
-        ("kd", d.kd.as_ref().map(|_| table.clone())),
-        ("ks", d.ks.map(|_| table.clone())),
-        ("shininess", span(&d.shininess)),
-        ("kr", d.kr.map(|_| table.clone())),
-        ("kt", d.kt.map(|_| table.clone())),
-        ("ior", span(&d.ior)),
-        ("ext_ior", span(&d.ext_ior)),
-        ("reflectance", d.reflectance.as_ref().map(|_| table.clone())),
-        ("specular", d.specular.map(|_| table.clone())),
-        ("transmittance", d.transmittance.map(|_| table.clone())),
-        ("eta", d.eta.map(|_| table.clone())),
-        ("k", d.k.map(|_| table.clone())),
-        ("metal", span(&d.metal)),
-        ("roughness", span(&d.roughness)),
-    ];
-    let takes: &[&str] = match kind {
+/// The keys of each kind besides [`COMMON`].
+fn takes(kind: MaterialKind) -> &'static [&'static str] {
+    const ROUGH: [&str; 4] = ["roughness", "roughness_u", "roughness_v", "distribution"];
+    match kind {
         MaterialKind::Whitted => &["ka", "kd", "ks", "shininess", "kr", "kt", "ior"],
         MaterialKind::Diffuse => &["reflectance"],
         MaterialKind::Conductor => &["specular", "eta", "k", "metal"],
-        MaterialKind::RoughConductor => &["specular", "eta", "k", "metal", "roughness"],
-        MaterialKind::Dielectric => &["ior", "ext_ior", "specular", "transmittance"],
-        MaterialKind::RoughDielectric => {
-            &["ior", "ext_ior", "specular", "transmittance", "roughness"]
+        MaterialKind::RoughConductor => &[
+            "specular", "eta", "k", "metal", ROUGH[0], ROUGH[1], ROUGH[2], ROUGH[3],
+        ],
+        MaterialKind::Dielectric | MaterialKind::ThinDielectric => {
+            &["ior", "ext_ior", "specular", "transmittance"]
         }
-        MaterialKind::Plastic => &["reflectance", "ior", "ext_ior", "specular", "roughness"],
-    };
+        MaterialKind::RoughDielectric => &[
+            "ior",
+            "ext_ior",
+            "specular",
+            "transmittance",
+            ROUGH[0],
+            ROUGH[1],
+            ROUGH[2],
+            ROUGH[3],
+        ],
+        MaterialKind::Plastic | MaterialKind::RoughPlastic => &[
+            "reflectance",
+            "ior",
+            "ext_ior",
+            "specular",
+            "nonlinear",
+            "roughness",
+            "distribution",
+        ],
+        MaterialKind::Blend => &["materials", "weight"],
+    }
+}
+
+/// Every material's description by name, and the surfaces built so far.
+pub struct Materials<'d> {
+    by_name: HashMap<&'d str, &'d Spanned<MaterialDesc>>,
+    surfaces: HashMap<&'d str, Surface>,
+}
+
+impl<'d> Materials<'d> {
+    /// The table of `descs` (names already checked unique).
+    pub fn new(descs: &'d [Spanned<MaterialDesc>]) -> Self {
+        Self {
+            by_name: descs
+                .iter()
+                .map(|m| (m.get_ref().name.get_ref().as_str(), m))
+                .collect(),
+            surfaces: HashMap::new(),
+        }
+    }
+
+    /// The renderer's material for `m`, and what the Whitted integrator approximates of it.
+    pub fn material(
+        &mut self,
+        m: &'d Spanned<MaterialDesc>,
+        ctx: &mut Context,
+    ) -> Result<(Material, Option<Approximation>), LoadError> {
+        let d = m.get_ref();
+        let table = m.span();
+        let surface = self.surface_of(m, ctx, 0)?;
+        let (mut material, approx) = if d.kind() == MaterialKind::Whitted {
+            let mut c = classic(m, ctx)?;
+            c.surface = surface;
+            (c, None)
+        } else {
+            Material::physically_based(surface, ctx.builder.images())
+        };
+        match &d.emission {
+            None => {}
+            Some(TextureDesc::Solid(c)) => material.ke = *c,
+            Some(t) => {
+                material.ke = Rgb::WHITE;
+                material.emission_map = Some(ctx.texture(t, table.clone(), Slot::Color)?);
+            }
+        }
+        if let Some(o) = &d.opacity {
+            let t = ctx.texture(o.get_ref(), o.span(), Slot::Data)?;
+            // Fully opaque everywhere is no cut-out at all.
+            if t.constant().is_none_or(|c| c.r < 1.0) {
+                material.opacity = Some(t);
+            }
+        }
+        material.two_sided = d.two_sided.unwrap_or(true);
+        material.vertex_colors = d.vertex_colors.unwrap_or(true);
+        Ok((material, approx))
+    }
+
+    /// The surface of material `m`, built on first use; `depth` counts the references followed.
+    fn surface_of(
+        &mut self,
+        m: &'d Spanned<MaterialDesc>,
+        ctx: &mut Context,
+        depth: usize,
+    ) -> Result<Surface, LoadError> {
+        let d = m.get_ref();
+        let name = d.name.get_ref().as_str();
+        if let Some(s) = self.surfaces.get(name) {
+            return Ok(s.clone());
+        }
+        if depth > MAX_NESTING {
+            return Err(ctx.source.error(
+                d.name.span(),
+                format!(
+                    "materials refer to each other more than {MAX_NESTING} deep (does `{name}` refer to itself?)"
+                ),
+            ));
+        }
+        check_keys(m, ctx)?;
+        let mut surface = match d.kind() {
+            MaterialKind::Blend => {
+                let Some(pair) = &d.materials else {
+                    return Err(ctx
+                        .source
+                        .error(m.span(), "a blend needs `materials = [\"a\", \"b\"]`"));
+                };
+                let names = pair.get_ref();
+                if names.len() != 2 {
+                    return Err(ctx.source.error(
+                        pair.span(),
+                        format!("a blend takes two materials, got {}", names.len()),
+                    ));
+                }
+                let first = self.referenced(&names[0], pair.span(), ctx, depth)?;
+                let second = self.referenced(&names[1], pair.span(), ctx, depth)?;
+                let weight = match &d.weight {
+                    Some(w) => ctx.texture(w.get_ref(), w.span(), Slot::Data)?,
+                    None => Texture::from(0.5),
+                };
+                Surface::Blend {
+                    weight,
+                    first: Box::new(first),
+                    second: Box::new(second),
+                }
+            }
+            _ => leaf(m, ctx)?,
+        };
+        if let Some(b) = &d.bump_map {
+            surface = Surface::BumpMap {
+                height: ctx.texture(b.get_ref(), b.span(), Slot::Data)?,
+                scale: d.bump_scale.as_ref().map_or(1.0, |s| s.get_ref().0),
+                inner: Box::new(surface),
+            };
+        }
+        if let Some(n) = &d.normal_map {
+            surface = Surface::NormalMap {
+                normals: ctx.texture(n.get_ref(), n.span(), Slot::Data)?,
+                strength: d.normal_scale.as_ref().map_or(1.0, |s| s.get_ref().0),
+                inner: Box::new(surface),
+            };
+        }
+        if let Some(back) = &d.back {
+            if d.two_sided == Some(false) {
+                return Err(ctx.source.error(
+                    back.span(),
+                    "`back` gives the back side a surface; it cannot go with `two_sided = false`",
+                ));
+            }
+            let back = self.referenced(back.get_ref(), back.span(), ctx, depth)?;
+            surface = Surface::TwoSided {
+                front: Box::new(surface),
+                back: Box::new(back),
+            };
+        }
+        self.surfaces.insert(name, surface.clone());
+        Ok(surface)
+    }
+
+    /// The surface of the material named `name`, referred to at `span`.
+    fn referenced(
+        &mut self,
+        name: &str,
+        span: Range<usize>,
+        ctx: &mut Context,
+        depth: usize,
+    ) -> Result<Surface, LoadError> {
+        let Some(&m) = self.by_name.get(name) else {
+            return Err(ctx.source.error(span, format!("unknown material `{name}`")));
+        };
+        self.surface_of(m, ctx, depth + 1)
+    }
+}
+
+/// Refuses the keys the material's kind does not take.
+fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(), LoadError> {
+    let table = m.span();
+    let d = m.get_ref();
+    let kind = d.kind();
+    let at = |present: bool| present.then(|| table.clone());
+    let keys = [
+        ("ka", at(d.ka.is_some())),
+        ("kd", at(d.kd.is_some())),
+        ("ks", at(d.ks.is_some())),
+        ("shininess", span(&d.shininess)),
+        ("kr", at(d.kr.is_some())),
+        ("kt", at(d.kt.is_some())),
+        ("ior", span(&d.ior)),
+        ("ext_ior", span(&d.ext_ior)),
+        ("reflectance", at(d.reflectance.is_some())),
+        ("specular", at(d.specular.is_some())),
+        ("transmittance", at(d.transmittance.is_some())),
+        ("eta", at(d.eta.is_some())),
+        ("k", at(d.k.is_some())),
+        ("metal", span(&d.metal)),
+        ("roughness", span(&d.roughness)),
+        ("roughness_u", span(&d.roughness_u)),
+        ("roughness_v", span(&d.roughness_v)),
+        ("distribution", span(&d.distribution)),
+        ("nonlinear", at(d.nonlinear.is_some())),
+        ("materials", span(&d.materials)),
+        ("weight", span(&d.weight)),
+    ];
+    let takes = takes(kind);
     let others: Vec<_> = keys
         .into_iter()
-        .filter(|(k, _)| !takes.contains(k))
+        .filter(|(k, _)| !takes.contains(k) && !COMMON.contains(k))
         .collect();
     refuse_keys(ctx.source, &format!("{} material", kind.name()), &others)?;
+    if d.normal_scale.is_some() && d.normal_map.is_none() {
+        return Err(ctx.source.error(
+            d.normal_scale.as_ref().map_or(table.clone(), Spanned::span),
+            "`normal_scale` needs a `normal_map`",
+        ));
+    }
+    if d.bump_scale.is_some() && d.bump_map.is_none() {
+        return Err(ctx.source.error(
+            d.bump_scale.as_ref().map_or(table, Spanned::span),
+            "`bump_scale` needs a `bump_map`",
+        ));
+    }
+    Ok(())
+}
 
-    let positive = |v: &Option<Spanned<crate::desc::Finite>>, what: &str, default: f32| match v {
+/// A positive number or its default.
+fn positive(
+    ctx: &Context,
+    v: &Option<Spanned<Finite>>,
+    what: &str,
+    default: f32,
+) -> Result<f32, LoadError> {
+    match v {
         Some(s) if s.get_ref().0 <= 0.0 => Err(ctx
             .source
             .error(s.span(), format!("{what} must be positive"))),
         Some(s) => Ok(s.get_ref().0),
         None => Ok(default),
-    };
-    let ior = positive(
-        &d.ior,
-        "ior",
-        if kind == MaterialKind::Whitted {
-            1.0
-        } else {
-            1.5
-        },
-    )?;
-    let ext_ior = positive(&d.ext_ior, "ext_ior", 1.0)?;
+    }
+}
+
+/// `ior / ext_ior` (defaults 1.5 and 1).
+fn relative_ior(d: &MaterialDesc, ctx: &Context) -> Result<f32, LoadError> {
+    Ok(positive(ctx, &d.ior, "ior", 1.5)? / positive(ctx, &d.ext_ior, "ext_ior", 1.0)?)
+}
+
+/// The classic material of a `whitted` description (its surface set by the caller).
+fn classic(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Material, LoadError> {
+    let d = m.get_ref();
     if let Some(s) = &d.shininess
         && s.get_ref().0 < 0.0
     {
         return Err(ctx.source.error(s.span(), "shininess must not be negative"));
     }
-    let alpha = match &d.roughness {
-        Some(r) if !(r.get_ref().0 > 0.0 && r.get_ref().0 <= 1.0) => {
-            return Err(ctx.source.error(r.span(), "roughness must be in (0, 1]"));
-        }
-        Some(r) => r.get_ref().0,
-        None => 0.1,
+    let c = |o: Option<Color>| o.map_or(Rgb::BLACK, |c| c.0);
+    let kd = match &d.kd {
+        Some(t) => ctx.texture(t, m.span(), Slot::Color)?,
+        None => Texture::Solid(Rgb::BLACK),
     };
-    let c = |o: Option<Color>, default: Rgb| o.map_or(default, |c| c.0);
-    let specular = c(d.specular, Rgb::WHITE);
-
-    let mut material = Material {
-        ke: c(d.emission, Rgb::BLACK),
-        two_sided: d.two_sided.unwrap_or(true),
+    Ok(Material {
+        ka: c(d.ka),
+        kd,
+        ks: c(d.ks),
+        shininess: d.shininess.as_ref().map_or(0.0, |s| s.get_ref().0),
+        kr: c(d.kr),
+        kt: c(d.kt),
+        ior: positive(ctx, &d.ior, "ior", 1.0)?,
         ..Material::default()
-    };
-    // GGX roughness of the rough kinds (0: smooth) for the path tracer.
-    let rough = |k: MaterialKind| {
-        if matches!(
-            k,
-            MaterialKind::RoughConductor | MaterialKind::RoughDielectric
-        ) || (k == MaterialKind::Plastic && d.roughness.is_some())
-        {
-            alpha
-        } else {
-            0.0
-        }
-    };
-    let mut approx = None;
-    match kind {
-        MaterialKind::Whitted => {
-            material.ka = c(d.ka, Rgb::BLACK);
-            material.kd =
-                texture(d.kd.as_ref(), table.clone(), ctx)?.unwrap_or(Texture::Solid(Rgb::BLACK));
-            material.ks = c(d.ks, Rgb::BLACK);
-            material.shininess = d.shininess.as_ref().map_or(0.0, |s| s.get_ref().0);
-            material.kr = c(d.kr, Rgb::BLACK);
-            material.kt = c(d.kt, Rgb::BLACK);
-            material.ior = ior;
-        }
-        MaterialKind::Diffuse | MaterialKind::Plastic => {
-            let kd = texture(d.reflectance.as_ref(), table.clone(), ctx)?
-                .unwrap_or(Texture::Solid(Rgb::gray(0.5)));
-            material.ka = mean_colour(&kd, ctx);
-            material.kd = kd;
-            material.surface = if kind == MaterialKind::Plastic {
-                Surface::Plastic {
-                    eta: ior / ext_ior,
-                    specular,
-                    alpha: rough(kind),
-                }
-            } else {
-                Surface::Diffuse
-            };
-            if kind == MaterialKind::Plastic {
-                let f0 = dielectric_f0(ior / ext_ior);
-                if d.roughness.is_some() {
-                    material.shininess = phong_exponent(alpha);
-                    material.ks = specular * (f0 * (material.shininess + 2.0) / 2.0).min(1.0);
-                    approx = Some(Approximation::Rough);
-                } else {
-                    material.kr = specular * f0;
-                }
-            }
-        }
-        MaterialKind::Conductor | MaterialKind::RoughConductor => {
-            let (eta, k) = match (&d.metal, d.eta, d.k) {
-                (Some(name), None, None) => {
-                    let Some((_, eta, k)) = METALS
-                        .iter()
-                        .find(|(n, _, _)| n.eq_ignore_ascii_case(name.get_ref()))
-                    else {
-                        let known: Vec<_> = METALS.iter().map(|m| m.0).collect();
-                        return Err(ctx.source.error(
-                            name.span(),
-                            format!(
-                                "unknown metal `{}` (known: {})",
-                                name.get_ref(),
-                                known.join(", ")
-                            ),
-                        ));
-                    };
-                    (Rgb::from(*eta), Rgb::from(*k))
-                }
-                (None, Some(eta), k) => (eta.0, k.map_or(Rgb::BLACK, |k| k.0)),
-                // A perfect mirror: Mitsuba's default is aluminium, but a conductor without
-                // its constants has always been white here; an index of 0 with no extinction
-                // reflects everything at every angle.
-                (None, None, None) => (Rgb::BLACK, Rgb::gray(1e4)),
-                (None, None, Some(_)) => {
-                    return Err(ctx
-                        .source
-                        .error(table, "a conductor's `k` needs its `eta` (or give `metal`)"));
-                }
-                _ => {
-                    return Err(ctx.source.error(
-                        table,
-                        "give a conductor either `metal` or `eta` (and `k`), not both",
-                    ));
-                }
-            };
-            let f0 = conductor_f0(eta, k);
-            material.surface = Surface::Conductor {
-                eta,
-                k,
-                specular,
-                alpha: rough(kind),
-            };
-            if kind == MaterialKind::RoughConductor {
-                material.shininess = phong_exponent(alpha);
-                material.ks = specular * f0;
-                approx = Some(Approximation::Rough);
-            } else {
-                material.kr = specular * f0;
-            }
-        }
-        MaterialKind::Dielectric | MaterialKind::RoughDielectric => {
-            let f0 = dielectric_f0(ior / ext_ior);
-            material.ior = ior / ext_ior;
-            material.surface = Surface::Dielectric {
-                eta: ior / ext_ior,
-                specular,
-                transmittance: c(d.transmittance, Rgb::WHITE),
-                alpha: rough(kind),
-            };
-            material.kr = specular * f0;
-            material.kt = c(d.transmittance, Rgb::WHITE) * (1.0 - f0);
-            if kind == MaterialKind::RoughDielectric {
-                approx = Some(Approximation::Rough);
-            }
-        }
-    }
-    Ok((material, approx))
-}
-
-/// The texture of a colour description, loading image files through `ctx`.
-fn texture(
-    d: Option<&DiffuseDesc>,
-    table: std::ops::Range<usize>,
-    ctx: &mut Context,
-) -> Result<Option<Texture>, LoadError> {
-    Ok(match d {
-        None => None,
-        Some(DiffuseDesc::Solid(c)) => Some(Texture::Solid(*c)),
-        Some(DiffuseDesc::Checker(c)) => Some(Texture::Checker(*c)),
-        Some(DiffuseDesc::Image(file)) => {
-            Some(Texture::Image(ctx.image(file, table, Rgb::WHITE)?))
-        }
     })
 }
 
-/// The average colour of a texture: the ambient coefficient of imported materials.
-fn mean_colour(t: &Texture, ctx: &Context) -> Rgb {
-    match t {
-        Texture::Solid(c) => *c,
-        Texture::Checker(c) => (c.even + c.odd) * 0.5,
-        Texture::Image(i) => ctx.image_mean(*i),
+/// The microfacet distribution named in `d` (default GGX).
+fn distribution(d: &MaterialDesc, ctx: &Context) -> Result<Distribution, LoadError> {
+    match &d.distribution {
+        None => Ok(Distribution::Ggx),
+        Some(s) => match s.get_ref().to_lowercase().as_str() {
+            "ggx" => Ok(Distribution::Ggx),
+            "beckmann" => Ok(Distribution::Beckmann),
+            other => Err(ctx.source.error(
+                s.span(),
+                format!("unknown microfacet distribution `{other}` (known: ggx, beckmann)"),
+            )),
+        },
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+/// A roughness texture, its constant value checked to lie in (0, 1].
+fn alpha(ctx: &mut Context, v: &Spanned<TextureDesc>, what: &str) -> Result<Texture, LoadError> {
+    if let TextureDesc::Solid(c) = v.get_ref() {
+        let a = c.r;
+        if !(a > 0.0 && a <= 1.0) || c.g != c.r || c.b != c.r {
+            return Err(ctx
+                .source
+                .error(v.span(), format!("{what} must be a number in (0, 1]")));
+        }
+    }
+    ctx.texture(v.get_ref(), v.span(), Slot::Data)
+}
 
-    #[test]
-    fn fresnel_at_normal_incidence() {
-        assert!((dielectric_f0(1.5) - 0.04).abs() < 1e-6);
-        let gold = conductor_f0(Rgb::from(METALS[0].1), Rgb::from(METALS[0].2));
-        // Gold reflects red most and blue least.
-        assert!(gold.r > 0.9 && gold.g > 0.6 && gold.b < 0.5, "{gold:?}");
-        assert_eq!(phong_exponent(1.0), 1.0);
-        assert!((phong_exponent(0.1) - 198.0).abs() < 1e-3);
+/// The microfacets of a rough kind: `roughness` (default 0.1), or `roughness_u` and
+/// `roughness_v` together.
+fn roughness(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Roughness, LoadError> {
+    let d = m.get_ref();
+    let distribution = distribution(d, ctx)?;
+    match (&d.roughness, &d.roughness_u, &d.roughness_v) {
+        (Some(r), None, None) => {
+            let t = alpha(ctx, r, "roughness")?;
+            Ok(Roughness {
+                distribution,
+                alpha_u: t.clone(),
+                alpha_v: t,
+            })
+        }
+        (None, Some(u), Some(v)) => Ok(Roughness {
+            distribution,
+            alpha_u: alpha(ctx, u, "roughness_u")?,
+            alpha_v: alpha(ctx, v, "roughness_v")?,
+        }),
+        (None, None, None) => Ok(Roughness::isotropic(distribution, 0.1)),
+        (Some(r), _, _) => Err(ctx.source.error(
+            r.span(),
+            "give either `roughness` or `roughness_u` and `roughness_v`, not both",
+        )),
+        (None, Some(s), None) | (None, None, Some(s)) => Err(ctx.source.error(
+            s.span(),
+            "anisotropic roughness needs both `roughness_u` and `roughness_v`",
+        )),
+    }
+}
+
+/// The surface of a physically based leaf kind (or the classic lobes of `whitted`).
+fn leaf(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Surface, LoadError> {
+    let d = m.get_ref();
+    let table = m.span();
+    let kind = d.kind();
+    let tex = |ctx: &mut Context, t: &Option<TextureDesc>, default: f32, slot: Slot| match t {
+        Some(t) => ctx.texture(t, table.clone(), slot),
+        None => Ok(Texture::from(default)),
+    };
+    Ok(match kind {
+        MaterialKind::Whitted => Surface::Classic,
+        MaterialKind::Diffuse => Surface::Diffuse {
+            reflectance: tex(ctx, &d.reflectance, 0.5, Slot::Color)?,
+        },
+        MaterialKind::Conductor | MaterialKind::RoughConductor => {
+            let specular = tex(ctx, &d.specular, 1.0, Slot::Color)?;
+            let (eta, k) = conductor_index(m, ctx)?;
+            let roughness = if kind == MaterialKind::RoughConductor {
+                Some(roughness(m, ctx)?)
+            } else {
+                None
+            };
+            Surface::Conductor {
+                eta,
+                k,
+                specular,
+                roughness,
+            }
+        }
+        MaterialKind::Dielectric | MaterialKind::RoughDielectric | MaterialKind::ThinDielectric => {
+            let specular = tex(ctx, &d.specular, 1.0, Slot::Color)?;
+            let transmittance = tex(ctx, &d.transmittance, 1.0, Slot::Color)?;
+            let eta = relative_ior(d, ctx)?;
+            match kind {
+                MaterialKind::ThinDielectric => Surface::ThinDielectric {
+                    eta,
+                    specular,
+                    transmittance,
+                },
+                _ => Surface::Dielectric {
+                    eta,
+                    specular,
+                    transmittance,
+                    roughness: if kind == MaterialKind::RoughDielectric {
+                        Some(roughness(m, ctx)?)
+                    } else {
+                        None
+                    },
+                },
+            }
+        }
+        MaterialKind::Plastic | MaterialKind::RoughPlastic => {
+            let diffuse = tex(ctx, &d.reflectance, 0.5, Slot::Color)?;
+            let specular = tex(ctx, &d.specular, 1.0, Slot::Color)?;
+            let eta = relative_ior(d, ctx)?;
+            let rough = kind == MaterialKind::RoughPlastic || d.roughness.is_some();
+            let coat = if rough {
+                Some(plastic_coat(m, eta, ctx)?)
+            } else {
+                if let Some(s) = &d.distribution {
+                    return Err(ctx.source.error(
+                        s.span(),
+                        "`distribution` needs a rough coat: give `roughness` (or use roughplastic)",
+                    ));
+                }
+                None
+            };
+            Surface::plastic_with(diffuse, eta, specular, d.nonlinear.unwrap_or(false), coat)
+        }
+        MaterialKind::Blend => unreachable!("blends are built from their materials"),
+    })
+}
+
+/// A rough plastic's coat: its roughness is one number (the coat's tables are integrated for
+/// it), shared between materials of the same distribution, roughness and index.
+fn plastic_coat(
+    m: &Spanned<MaterialDesc>,
+    eta: f32,
+    ctx: &mut Context,
+) -> Result<Arc<RoughCoat>, LoadError> {
+    let d = m.get_ref();
+    let distribution = distribution(d, ctx)?;
+    let alpha = match &d.roughness {
+        None => 0.1,
+        Some(r) => match r.get_ref() {
+            TextureDesc::Solid(c) if c.r > 0.0 && c.r <= 1.0 && c.r == c.g && c.g == c.b => c.r,
+            TextureDesc::Solid(_) => {
+                return Err(ctx
+                    .source
+                    .error(r.span(), "roughness must be a number in (0, 1]"));
+            }
+            _ => {
+                return Err(ctx.source.error(
+                    r.span(),
+                    "a plastic's roughness is one number (its coat's transmittance is tabulated for it), not a texture",
+                ));
+            }
+        },
+    };
+    let key = (distribution as u8, alpha.to_bits(), eta.to_bits());
+    Ok(ctx
+        .coats
+        .entry(key)
+        .or_insert_with(|| {
+            Arc::new(RoughCoat::new(
+                Microfacet::isotropic(distribution, alpha),
+                eta,
+            ))
+        })
+        .clone())
+}
+
+/// A conductor's `(eta, k)`: `metal` by name, `eta` (and `k`), or a perfect mirror.
+fn conductor_index(
+    m: &Spanned<MaterialDesc>,
+    ctx: &mut Context,
+) -> Result<(Texture, Texture), LoadError> {
+    let d = m.get_ref();
+    let table = m.span();
+    match (&d.metal, &d.eta, &d.k) {
+        (Some(name), None, None) => {
+            let Some((eta, k)) = metals::metal(name.get_ref()) else {
+                let known: Vec<_> = metals::METALS.iter().map(|m| m.0).collect();
+                return Err(ctx.source.error(
+                    name.span(),
+                    format!(
+                        "unknown metal `{}` (known: {})",
+                        name.get_ref(),
+                        known.join(", ")
+                    ),
+                ));
+            };
+            Ok((Texture::Solid(Rgb::from(eta)), Texture::Solid(Rgb::from(k))))
+        }
+        (None, Some(eta), k) => Ok((
+            ctx.texture(eta, table.clone(), Slot::Data)?,
+            match k {
+                Some(k) => ctx.texture(k, table, Slot::Data)?,
+                None => Texture::Solid(Rgb::BLACK),
+            },
+        )),
+        // A perfect mirror: an index of 0 with a large extinction reflects everything at every
+        // angle (Mitsuba's `none` is η = 0, k = 1, which its reader says explicitly).
+        (None, None, None) => Ok((Texture::Solid(Rgb::BLACK), Texture::Solid(Rgb::gray(1e4)))),
+        (None, None, Some(_)) => Err(ctx
+            .source
+            .error(table, "a conductor's `k` needs its `eta` (or give `metal`)")),
+        _ => Err(ctx.source.error(
+            table,
+            "give a conductor either `metal` or `eta` (and `k`), not both",
+        )),
     }
 }

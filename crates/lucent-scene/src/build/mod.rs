@@ -7,10 +7,12 @@ pub mod materials;
 mod motion;
 mod objects;
 pub mod shapes;
+pub mod textures;
 
 use crate::desc::settings::{
     FilterName, FilterSamplingName, RenderDesc, SamplingName, TriangleTestName,
 };
+use crate::desc::texture::Encoding;
 use crate::desc::{IntegratorName, SceneDesc};
 use crate::error::{LoadError, Source};
 use crate::hash::Fingerprint;
@@ -77,8 +79,9 @@ pub struct Context<'a> {
     pub builder: SceneBuilder,
     /// Mesh files parsed so far.
     pub mesh_files: crate::mesh_file::MeshFiles,
-    images: HashMap<(PathBuf, [u32; 3]), u32>,
-    image_means: Vec<Rgb>,
+    images: HashMap<(PathBuf, [u32; 3], Encoding), u32>,
+    /// Rough coats already integrated, by (distribution, α, η) bits.
+    pub coats: HashMap<(u8, u32, u32), std::sync::Arc<lucent::bsdf::RoughCoat>>,
 }
 
 impl Context<'_> {
@@ -89,8 +92,15 @@ impl Context<'_> {
             .map_err(|e| self.source.error(span, e))
     }
 
-    /// The scene's index of the image file `name`, scaled by `scale`, read once.
-    pub fn image(&mut self, name: &str, span: Range<usize>, scale: Rgb) -> Result<u32, LoadError> {
+    /// The scene's index of the image file `name`, decoded by `encoding` and scaled by
+    /// `scale`, read once.
+    pub fn image(
+        &mut self,
+        name: &str,
+        span: Range<usize>,
+        scale: Rgb,
+        encoding: Encoding,
+    ) -> Result<u32, LoadError> {
         let path = self.path(name, span.clone())?;
         if !path.is_file() {
             return Err(self
@@ -100,26 +110,18 @@ impl Context<'_> {
         let key = (
             std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone()),
             [scale.r, scale.g, scale.b].map(f32::to_bits),
+            encoding,
         );
         if let Some(&id) = self.images.get(&key) {
             return Ok(id);
         }
-        let mut image = crate::images::read_image(&path, &mut self.inputs)?;
+        let mut image = crate::images::read_image(&path, encoding, &mut self.inputs)?;
         if scale != Rgb::WHITE {
             image = image.scaled(scale);
         }
-        self.image_means.push(image.mean());
         let id = self.builder.image(image);
         self.images.insert(key, id);
         Ok(id)
-    }
-
-    /// The mean colour of image `id`.
-    pub fn image_mean(&self, id: u32) -> Rgb {
-        self.image_means
-            .get(id as usize)
-            .copied()
-            .unwrap_or(Rgb::BLACK)
     }
 }
 
@@ -203,12 +205,12 @@ pub fn build_with_files(
         builder,
         mesh_files: files,
         images: HashMap::new(),
-        image_means: Vec::new(),
+        coats: HashMap::new(),
     };
     ctx.inputs.add(source.text.as_bytes());
 
     let mut material_ids = HashMap::new();
-    let mut approximated: Vec<(materials::Approximation, &str)> = Vec::new();
+    let mut approximated: Vec<(lucent::material::Approximation, &str)> = Vec::new();
     for m in &desc.materials {
         let name = m.get_ref().name.get_ref();
         if material_ids.contains_key(name.as_str()) {
@@ -217,11 +219,21 @@ pub fn build_with_files(
                 format!("a material named `{name}` already exists"),
             ));
         }
-        let (material, approx) = materials::whitted_material(m, &mut ctx)?;
+        material_ids.insert(name.as_str(), (0, Rgb::BLACK));
+    }
+    let mut table = materials::Materials::new(&desc.materials);
+    for m in &desc.materials {
+        let name = m.get_ref().name.get_ref();
+        let (material, approx) = table.material(m, &mut ctx)?;
         if let Some(a) = approx {
             approximated.push((a, name));
         }
-        material_ids.insert(name.as_str(), (ctx.builder.material(material), material));
+        let emission = if material.emission_map.is_none() {
+            material.ke
+        } else {
+            Rgb::BLACK
+        };
+        material_ids.insert(name.as_str(), (ctx.builder.material(material), emission));
     }
     // The physically based integrators render area lights, environments and rough materials
     // as they are.
@@ -229,16 +241,8 @@ pub fn build_with_files(
         settings.integrator,
         Integrator::Path(_) | Integrator::Sppm(_)
     );
-    if !approximated.is_empty() && !path {
-        let names: Vec<String> = approximated.iter().map(|(_, n)| format!("`{n}`")).collect();
-        ctx.warnings.push(format!(
-            "{}: rough material{} {} {} rendered smooth (glass) or with a Phong highlight (metal, plastic) by the {} integrator",
-            source.path.display(),
-            if names.len() == 1 { "" } else { "s" },
-            names.join(", "),
-            if names.len() == 1 { "is" } else { "are" },
-            settings.integrator.name()
-        ));
+    if !path {
+        approximation_warnings(&mut ctx, &approximated, settings.integrator.name());
     }
 
     let sppm = matches!(settings.integrator, Integrator::Sppm(_));
@@ -249,7 +253,7 @@ pub fn build_with_files(
     for o in &desc.objects {
         let d = o.get_ref();
         let name = d.material.get_ref();
-        let Some(&(material, m)) = material_ids.get(name.as_str()) else {
+        let Some(&(material, ke)) = material_ids.get(name.as_str()) else {
             let known: Vec<_> = desc
                 .materials
                 .iter()
@@ -265,9 +269,9 @@ pub fn build_with_files(
                 format!("unknown material `{name}` ({hint})"),
             ));
         };
-        let emissive = !m.ke.is_black();
+        let emissive = !ke.is_black();
         if let Some(surface) = objects::add_object(&mut ctx, &mut meshes, o, material, emissive)? {
-            emitters.push((m.ke, surface));
+            emitters.push((ke, surface));
         }
     }
     // The path tracer samples the emitting surfaces themselves.
@@ -290,6 +294,50 @@ pub fn build_with_files(
         inputs: inputs.value(),
         warnings,
     })
+}
+
+/// One warning per reason the classic integrators draw materials other than as written.
+fn approximation_warnings(
+    ctx: &mut Context,
+    approximated: &[(lucent::material::Approximation, &str)],
+    integrator: &str,
+) {
+    use lucent::material::Approximation;
+    for (reason, what) in [
+        (
+            Approximation::Rough,
+            "rendered smooth (glass) or with a Phong highlight (metal, plastic)",
+        ),
+        (
+            Approximation::Blend,
+            "a blend of two surfaces, rendered with the mean of their coefficients",
+        ),
+        (
+            Approximation::NormalMap,
+            "normal- or bump-mapped, rendered with the surface's own normal",
+        ),
+    ] {
+        let names: Vec<String> = approximated
+            .iter()
+            .filter(|(a, _)| *a == reason)
+            .map(|(_, n)| format!("`{n}`"))
+            .collect();
+        if names.is_empty() {
+            continue;
+        }
+        let kind = if reason == Approximation::Rough {
+            "rough material"
+        } else {
+            "material"
+        };
+        ctx.warnings.push(format!(
+            "{}: {kind}{} {} {} {what} by the {integrator} integrator",
+            ctx.source.path.display(),
+            if names.len() == 1 { "" } else { "s" },
+            names.join(", "),
+            if names.len() == 1 { "is" } else { "are" },
+        ));
+    }
 }
 
 pub(crate) fn check(

@@ -1,11 +1,7 @@
 //! `[[material]]` tables.
 
-use super::{Color, Finite};
-use lucent::Rgb;
-use lucent::texture::Checker;
-use serde::de::{self, Deserializer, MapAccess, Visitor};
-use serde::{Deserialize, Serialize, Serializer};
-use std::fmt;
+use super::{Finite, TextureDesc};
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
 /// The kinds of material. `whitted` takes the classic coefficients; the others are
@@ -21,15 +17,22 @@ pub enum MaterialKind {
     Diffuse,
     /// A smooth metal: `eta` and `k`, or `metal`; `specular`.
     Conductor,
-    /// A rough metal (GGX): as `conductor`, plus `roughness`.
+    /// A rough metal: as `conductor`, plus `roughness` (or `roughness_u`, `roughness_v`) and
+    /// `distribution`.
     RoughConductor,
     /// Smooth glass: `ior`, `ext_ior`, `specular`, `transmittance`.
     Dielectric,
-    /// Rough glass (GGX): as `dielectric`, plus `roughness`.
+    /// Rough glass: as `dielectric`, plus the roughness keys.
     RoughDielectric,
-    /// A diffuse base under a smooth dielectric coat: `reflectance`, `ior`, `ext_ior`,
-    /// `specular`; `roughness` for a rough coat.
+    /// A thin sheet of glass: `ior`, `ext_ior`, `specular`, `transmittance`.
+    ThinDielectric,
+    /// A diffuse base under a dielectric coat: `reflectance`, `ior`, `ext_ior`, `specular`,
+    /// `nonlinear`; with `roughness` (and `distribution`) the coat is rough.
     Plastic,
+    /// `plastic` with a rough coat (`roughness` defaults to 0.1).
+    RoughPlastic,
+    /// Two other materials' surfaces blended: `materials = ["a", "b"]`, `weight` (of `b`).
+    Blend,
 }
 
 impl MaterialKind {
@@ -42,13 +45,28 @@ impl MaterialKind {
             MaterialKind::RoughConductor => "roughconductor",
             MaterialKind::Dielectric => "dielectric",
             MaterialKind::RoughDielectric => "roughdielectric",
+            MaterialKind::ThinDielectric => "thindielectric",
             MaterialKind::Plastic => "plastic",
+            MaterialKind::RoughPlastic => "roughplastic",
+            MaterialKind::Blend => "blend",
         }
+    }
+
+    /// Whether the kind has microfacets (takes the roughness keys).
+    pub fn is_rough(self) -> bool {
+        matches!(
+            self,
+            MaterialKind::RoughConductor
+                | MaterialKind::RoughDielectric
+                | MaterialKind::RoughPlastic
+        )
     }
 }
 
 /// One `[[material]]`; which keys apply depends on `type` (default `"whitted"`); the others
-/// are refused in build. A missing coefficient is 0, a missing `ior` is 1.
+/// are refused in build. A missing coefficient is 0, a missing `ior` is 1 (`whitted`) or 1.5.
+/// Every colour or number of the physically based kinds may be a texture
+/// ([`TextureDesc`]).
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialDesc {
@@ -59,186 +77,98 @@ pub struct MaterialDesc {
     pub kind: Option<Spanned<MaterialKind>>,
     /// Ambient coefficient.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ka: Option<Color>,
-    /// Diffuse coefficient: a colour, a checkerboard or an image.
+    pub ka: Option<super::Color>,
+    /// Diffuse coefficient: a colour or a texture.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub kd: Option<DiffuseDesc>,
+    pub kd: Option<TextureDesc>,
     /// Specular coefficient.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ks: Option<Color>,
+    pub ks: Option<super::Color>,
     /// Phong exponent, ≥ 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shininess: Option<Spanned<Finite>>,
     /// Mirror reflection coefficient.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub kr: Option<Color>,
+    pub kr: Option<super::Color>,
     /// Transmission coefficient.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub kt: Option<Color>,
+    pub kt: Option<super::Color>,
     /// Index of refraction of the inside, > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ior: Option<Spanned<Finite>>,
     /// Index of refraction of the outside, > 0 (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ext_ior: Option<Spanned<Finite>>,
-    /// Diffuse albedo (`diffuse`, `plastic`): a colour, a checkerboard or an image.
+    /// Diffuse albedo (`diffuse`, `plastic`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub reflectance: Option<DiffuseDesc>,
+    pub reflectance: Option<TextureDesc>,
     /// Tint of the specular reflection (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub specular: Option<Color>,
+    pub specular: Option<TextureDesc>,
     /// Tint of the specular transmission (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub transmittance: Option<Color>,
+    pub transmittance: Option<TextureDesc>,
     /// A conductor's index of refraction per channel.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub eta: Option<Color>,
+    pub eta: Option<TextureDesc>,
     /// A conductor's extinction coefficient per channel.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub k: Option<Color>,
-    /// A conductor by name: `"Au"`, `"Ag"`, `"Cu"`, `"Al"` (instead of `eta` and `k`).
+    pub k: Option<TextureDesc>,
+    /// A conductor by name (`"Au"`, `"Ag"`, `"Cu"`, `"Al"`, … the names Mitsuba knows),
+    /// instead of `eta` and `k`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub metal: Option<Spanned<String>>,
-    /// GGX roughness α of the rough kinds, in (0, 1].
+    /// Microfacet roughness `α` of the rough kinds, isotropic, in (0, 1].
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub roughness: Option<Spanned<Finite>>,
-    /// Radiance emitted by the surface: an area light on every object of this material.
+    pub roughness: Option<Spanned<TextureDesc>>,
+    /// Anisotropic roughness along the surface's tangent (`∂p/∂u`), with `roughness_v`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub emission: Option<Color>,
+    pub roughness_u: Option<Spanned<TextureDesc>>,
+    /// Anisotropic roughness along the bitangent, with `roughness_u`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roughness_v: Option<Spanned<TextureDesc>>,
+    /// The microfacet distribution: `"ggx"` (the default) or `"beckmann"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distribution: Option<Spanned<String>>,
+    /// A plastic's base sums its internal bounces (darker, more saturated; Mitsuba's
+    /// `nonlinear`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nonlinear: Option<bool>,
+    /// Radiance emitted by the surface: an area light on every object of this material (a
+    /// texture makes it glow where the texture says, found by the rays that hit it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub emission: Option<TextureDesc>,
+    /// Coverage in `[0, 1]`: where below 1 the surface is cut away (alpha).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub opacity: Option<Spanned<TextureDesc>>,
+    /// A tangent-space normal map (an image, linear by default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_map: Option<Spanned<TextureDesc>>,
+    /// Multiplies the normal map's x and y (glTF's `scale`; default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_scale: Option<Spanned<Finite>>,
+    /// A height texture whose gradient bends the shading normal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bump_map: Option<Spanned<TextureDesc>>,
+    /// Multiplies the height (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bump_scale: Option<Spanned<Finite>>,
+    /// `blend`: the two materials blended (their surfaces; this material's own keys stay).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub materials: Option<Spanned<Vec<String>>>,
+    /// `blend`: the share of the second material, in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weight: Option<Spanned<TextureDesc>>,
     /// Whether the back side scatters light like the front (default true; Mitsuba's BSDFs
     /// are one-sided unless wrapped in `twosided`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub two_sided: Option<bool>,
-}
-
-/// A colour over a surface, as a file gives it: a colour, `{ checker = { even, odd, size } }`,
-/// or `{ image = "file.png" }` (PNG, JPEG, EXR or HDR; 8-bit images are sRGB-encoded, float
-/// images linear; looked up by the surface's texture coordinates).
-#[derive(Clone, Debug, PartialEq)]
-pub enum DiffuseDesc {
-    /// One colour.
-    Solid(Rgb),
-    /// A 3D checkerboard.
-    Checker(Checker),
-    /// An image file, relative to the scene file's folder.
-    Image(String),
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CheckerDesc {
-    even: Color,
-    odd: Color,
-    size: Finite,
-}
-
-struct DiffuseVisitor;
-
-impl<'de> Visitor<'de> for DiffuseVisitor {
-    type Value = DiffuseDesc;
-
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(
-            "a colour (a number or [r, g, b]), { checker = { even, odd, size } } or { image = \"file\" }",
-        )
-    }
-
-    fn visit_f64<E: de::Error>(self, v: f64) -> Result<DiffuseDesc, E> {
-        let Color(c) = Color::deserialize(de::value::F64Deserializer::new(v))?;
-        Ok(DiffuseDesc::Solid(c))
-    }
-
-    fn visit_i64<E: de::Error>(self, v: i64) -> Result<DiffuseDesc, E> {
-        self.visit_f64(v as f64)
-    }
-
-    fn visit_u64<E: de::Error>(self, v: u64) -> Result<DiffuseDesc, E> {
-        self.visit_f64(v as f64)
-    }
-
-    fn visit_seq<A: de::SeqAccess<'de>>(self, seq: A) -> Result<DiffuseDesc, A::Error> {
-        let Color(c) = Color::deserialize(de::value::SeqAccessDeserializer::new(seq))?;
-        Ok(DiffuseDesc::Solid(c))
-    }
-
-    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<DiffuseDesc, A::Error> {
-        let Some(key) = map.next_key::<String>()? else {
-            return Err(de::Error::custom(
-                "an empty table is not a texture; expected { checker = ... }",
-            ));
-        };
-        if key == "image" {
-            let file: String = map.next_value()?;
-            if file.is_empty() {
-                return Err(de::Error::custom("the image's file name is empty"));
-            }
-            if let Some(extra) = map.next_key::<String>()? {
-                return Err(de::Error::custom(format!(
-                    "a texture has one kind; unexpected `{extra}` after `image`"
-                )));
-            }
-            return Ok(DiffuseDesc::Image(file));
-        }
-        if key != "checker" {
-            return Err(de::Error::unknown_field(&key, &["checker", "image"]));
-        }
-        let c: CheckerDesc = map.next_value()?;
-        if c.size.0 <= 0.0 {
-            return Err(de::Error::custom(format!(
-                "the checker size must be positive, got {}",
-                c.size.0
-            )));
-        }
-        if let Some(extra) = map.next_key::<String>()? {
-            return Err(de::Error::custom(format!(
-                "a texture has one kind; unexpected `{extra}` after `checker`"
-            )));
-        }
-        Ok(DiffuseDesc::Checker(Checker {
-            even: c.even.0,
-            odd: c.odd.0,
-            size: c.size.0,
-        }))
-    }
-}
-
-impl<'de> Deserialize<'de> for DiffuseDesc {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        d.deserialize_any(DiffuseVisitor)
-    }
-}
-
-impl Serialize for DiffuseDesc {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        use serde::ser::SerializeMap;
-        match self {
-            DiffuseDesc::Solid(c) => Color(*c).serialize(s),
-            DiffuseDesc::Checker(c) => {
-                let mut m = s.serialize_map(Some(1))?;
-                m.serialize_entry(
-                    "checker",
-                    &CheckerOut {
-                        even: Color(c.even),
-                        odd: Color(c.odd),
-                        size: Finite(c.size),
-                    },
-                )?;
-                m.end()
-            }
-            DiffuseDesc::Image(file) => {
-                let mut m = s.serialize_map(Some(1))?;
-                m.serialize_entry("image", file)?;
-                m.end()
-            }
-        }
-    }
-}
-
-#[derive(Serialize)]
-struct CheckerOut {
-    even: Color,
-    odd: Color,
-    size: Finite,
+    /// The material whose surface the back side wears (Mitsuba's `twosided` with two BSDFs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub back: Option<Spanned<String>>,
+    /// Whether mesh vertex colours multiply the diffuse colour (default true).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vertex_colors: Option<bool>,
 }
 
 impl MaterialDesc {
@@ -262,8 +192,29 @@ impl MaterialDesc {
             k: None,
             metal: None,
             roughness: None,
+            roughness_u: None,
+            roughness_v: None,
+            distribution: None,
+            nonlinear: None,
             emission: None,
+            opacity: None,
+            normal_map: None,
+            normal_scale: None,
+            bump_map: None,
+            bump_scale: None,
+            materials: None,
+            weight: None,
             two_sided: None,
+            back: None,
+            vertex_colors: None,
+        }
+    }
+
+    /// A material of `kind` named `name`, every key missing.
+    pub fn of_kind(name: &str, kind: MaterialKind) -> Self {
+        Self {
+            kind: Some(Spanned::new(0..0, kind)),
+            ..Self::named(name)
         }
     }
 
@@ -272,5 +223,31 @@ impl MaterialDesc {
         self.kind
             .as_ref()
             .map_or(MaterialKind::Whitted, |k| *k.get_ref())
+    }
+
+    /// Every texture it holds, mutably (for rebasing image paths).
+    pub fn textures_mut(&mut self) -> impl Iterator<Item = &mut TextureDesc> {
+        let plain = [
+            &mut self.kd,
+            &mut self.reflectance,
+            &mut self.specular,
+            &mut self.transmittance,
+            &mut self.eta,
+            &mut self.k,
+            &mut self.emission,
+        ];
+        let spanned = [
+            &mut self.roughness,
+            &mut self.roughness_u,
+            &mut self.roughness_v,
+            &mut self.opacity,
+            &mut self.normal_map,
+            &mut self.bump_map,
+            &mut self.weight,
+        ];
+        plain
+            .into_iter()
+            .flatten()
+            .chain(spanned.into_iter().flatten().map(Spanned::get_mut))
     }
 }

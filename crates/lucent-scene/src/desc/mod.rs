@@ -11,14 +11,16 @@ pub mod material;
 pub mod motion;
 pub mod object;
 pub mod settings;
+pub mod texture;
 pub mod values;
 
 pub use camera::CameraDesc;
 pub use light::{FalloffName, LightDesc, LightKind};
-pub use material::{DiffuseDesc, MaterialDesc, MaterialKind};
+pub use material::{MaterialDesc, MaterialKind};
 pub use motion::{KeyDesc, MotionDesc, OrbitDesc, OscillateDesc, RepeatName};
 pub use object::{ObjectDesc, ObjectKind};
 pub use settings::{ImageDesc, IntegratorName, RenderDesc, WorldDesc};
+pub use texture::{ImageMapDesc, TextureDesc};
 pub use values::{Color, Finite, Matrix, Scale, Vector};
 
 use serde::{Deserialize, Serialize};

@@ -17,7 +17,7 @@
 //! black; `doubleSided` becomes `two_sided`.
 
 use super::source::file_name_of_uri;
-use crate::desc::{Color, DiffuseDesc, Finite, MaterialDesc, MaterialKind};
+use crate::desc::{Finite, ImageMapDesc, MaterialDesc, MaterialKind, TextureDesc};
 use crate::paths::{LoadOptions, resolve};
 use gltf::material::AlphaMode;
 use lucent::Rgb;
@@ -37,7 +37,7 @@ pub(super) const DEFAULT_REFLECTANCE: f32 = 0.8;
 pub(super) fn default_material(name: &str) -> MaterialDesc {
     let mut d = MaterialDesc::named(name);
     d.kind = Some(Spanned::new(0..0, MaterialKind::Diffuse));
-    d.reflectance = Some(DiffuseDesc::Solid(Rgb::gray(DEFAULT_REFLECTANCE)));
+    d.reflectance = Some(TextureDesc::gray(DEFAULT_REFLECTANCE));
     d.two_sided = Some(false);
     d
 }
@@ -135,10 +135,10 @@ pub(super) fn describe(
     match kind {
         MaterialKind::Dielectric | MaterialKind::RoughDielectric => {
             d.ior = finite(ior);
-            d.transmittance = Some(Color(base));
+            d.transmittance = Some(TextureDesc::Solid(base));
         }
         MaterialKind::Conductor | MaterialKind::RoughConductor => {
-            d.specular = Some(Color(base));
+            d.specular = Some(TextureDesc::Solid(base));
         }
         _ => {
             d.reflectance = Some(match &texture {
@@ -149,9 +149,9 @@ pub(super) fn describe(
                             base.to_array()
                         ));
                     }
-                    DiffuseDesc::Image(file.clone())
+                    TextureDesc::Image(ImageMapDesc::new(file.clone()))
                 }
-                None => DiffuseDesc::Solid(base),
+                None => TextureDesc::Solid(base),
             });
             if kind == MaterialKind::Plastic {
                 d.ior = finite(ior);
@@ -169,7 +169,7 @@ pub(super) fn describe(
         MaterialKind::RoughDielectric | MaterialKind::RoughConductor | MaterialKind::Plastic
     ) && !smooth
     {
-        d.roughness = finite(alpha);
+        d.roughness = Some(Spanned::new(0..0, TextureDesc::gray(alpha)));
     }
     let strength = m.emissive_strength().unwrap_or(1.0);
     let [er, eg, eb] = m.emissive_factor();
@@ -179,7 +179,7 @@ pub(super) fn describe(
         &mut note,
     );
     if !emission.is_black() {
-        d.emission = Some(Color(emission));
+        d.emission = Some(TextureDesc::Solid(emission));
     }
     d.two_sided = Some(m.double_sided());
     let ignored = [

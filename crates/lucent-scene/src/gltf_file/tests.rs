@@ -2,7 +2,7 @@
 //! nodes, broken inputs) are tested in `tests/gltf.rs`.
 
 use super::*;
-use crate::desc::{Color, DiffuseDesc, MaterialKind};
+use crate::desc::{Color, MaterialKind, TextureDesc};
 use std::f32::consts::FRAC_PI_2;
 
 const MATERIALS: &str = r#"{
@@ -30,7 +30,10 @@ fn ior(d: &MaterialDesc) -> Option<f32> {
 }
 
 fn roughness(d: &MaterialDesc) -> Option<f32> {
-    d.roughness.as_ref().map(|v| v.get_ref().0)
+    d.roughness.as_ref().map(|v| match v.get_ref() {
+        TextureDesc::Solid(c) => c.r,
+        other => panic!("a constant roughness, got {other:?}"),
+    })
 }
 
 use crate::desc::MaterialDesc;
@@ -72,7 +75,10 @@ fn metallic_roughness_maps_to_lucent_kinds() {
 
     let (glass, notes) = &m[0];
     assert_eq!(ior(glass), Some(1.33));
-    assert_eq!(glass.transmittance, Some(Color(Rgb::new(0.9, 0.95, 1.0))));
+    assert_eq!(
+        glass.transmittance,
+        Some(TextureDesc::Solid(Rgb::new(0.9, 0.95, 1.0)))
+    );
     assert_eq!(roughness(glass), None);
     assert_eq!(glass.two_sided, Some(false));
     assert!(notes.is_empty(), "{notes:?}");
@@ -80,7 +86,7 @@ fn metallic_roughness_maps_to_lucent_kinds() {
     let (frosted, notes) = &m[1];
     assert_eq!(ior(frosted), Some(1.5));
     assert_eq!(roughness(frosted), Some(0.25));
-    assert_eq!(frosted.transmittance, Some(Color(Rgb::WHITE)));
+    assert_eq!(frosted.transmittance, Some(TextureDesc::Solid(Rgb::WHITE)));
     assert_eq!(
         notes,
         &[
@@ -89,8 +95,14 @@ fn metallic_roughness_maps_to_lucent_kinds() {
     );
 
     let (gold, _) = &m[2];
-    assert_eq!(gold.specular, Some(Color(Rgb::new(1.0, 0.8, 0.25))));
-    assert_eq!((gold.eta, gold.k, roughness(gold)), (None, None, None));
+    assert_eq!(
+        gold.specular,
+        Some(TextureDesc::Solid(Rgb::new(1.0, 0.8, 0.25)))
+    );
+    assert_eq!(
+        (gold.eta.clone(), gold.k.clone(), roughness(gold)),
+        (None, None, None)
+    );
     assert_eq!(gold.transmittance, None);
 
     // A metal is opaque: its transmission is not a note, and not a dielectric.
@@ -101,7 +113,7 @@ fn metallic_roughness_maps_to_lucent_kinds() {
     let (chalk, _) = &m[4];
     assert_eq!(
         chalk.reflectance,
-        Some(DiffuseDesc::Solid(Rgb::new(0.5, 0.25, 0.125)))
+        Some(TextureDesc::Solid(Rgb::new(0.5, 0.25, 0.125)))
     );
     assert_eq!((ior(chalk), roughness(chalk)), (None, None));
     assert_eq!(chalk.two_sided, Some(true));
@@ -109,13 +121,16 @@ fn metallic_roughness_maps_to_lucent_kinds() {
     let (shiny, _) = &m[5];
     assert_eq!(
         shiny.reflectance,
-        Some(DiffuseDesc::Solid(Rgb::new(0.2, 0.4, 0.6)))
+        Some(TextureDesc::Solid(Rgb::new(0.2, 0.4, 0.6)))
     );
     assert_eq!(ior(shiny), Some(1.5));
     assert_eq!(roughness(shiny), Some(0.3f32 * 0.3));
 
     let (lamp, notes) = &m[6];
-    assert_eq!(lamp.emission, Some(Color(Rgb::new(4.0, 2.0, 0.0))));
+    assert_eq!(
+        lamp.emission,
+        Some(TextureDesc::Solid(Rgb::new(4.0, 2.0, 0.0)))
+    );
     assert_eq!(
         notes,
         &["material 6 (`Lamp`): metallicFactor 0.25 is rounded to 0: rendered as `diffuse`"]
@@ -143,7 +158,7 @@ fn the_default_material_name_stays_unique() {
     assert_eq!(default, "gltf:default#2");
     let d = material::default_material(&default);
     assert_eq!(d.kind(), MaterialKind::Diffuse);
-    assert_eq!(d.reflectance, Some(DiffuseDesc::Solid(Rgb::gray(0.8))));
+    assert_eq!(d.reflectance, Some(TextureDesc::Solid(Rgb::gray(0.8))));
 }
 
 const LIGHTS: &str = r#"{

@@ -2,22 +2,32 @@
 //!
 //! | Mitsuba | lucent |
 //! | --- | --- |
-//! | `diffuse` (`reflectance`: colour or bitmap, default 0.5) | `diffuse` |
-//! | `conductor`, `roughconductor` (`material` or `eta`/`k`, `specular_reflectance`, `alpha`) | `conductor`, `roughconductor` (`metal` or `eta`/`k`, `specular`, `roughness`) |
-//! | `dielectric`, `roughdielectric`, `thindielectric` (`int_ior` default bk7, `ext_ior` default air, `specular_reflectance`, `specular_transmittance`) | `dielectric`, `roughdielectric` (`ior`, `ext_ior`, `specular`, `transmittance`) |
-//! | `plastic`, `roughplastic` (`diffuse_reflectance` default 0.5, `int_ior` default polypropylene) | `plastic` (`reflectance`, `ior`, `roughness` when rough) |
-//! | `twosided` around one BSDF | that BSDF with `two_sided = true` |
+//! | `diffuse` (`reflectance`, default 0.5) | `diffuse` |
+//! | `conductor`, `roughconductor` (`material` or `eta`/`k`, `specular_reflectance`, `distribution`, `alpha` or `alpha_u`/`alpha_v`) | `conductor`, `roughconductor` (`metal` or `eta`/`k`, `specular`, `distribution`, `roughness` or `roughness_u`/`roughness_v`) |
+//! | `dielectric`, `roughdielectric`, `thindielectric` (`int_ior` default bk7, `ext_ior` default air, `specular_reflectance`, `specular_transmittance`) | `dielectric`, `roughdielectric`, `thindielectric` (`ior`, `ext_ior`, `specular`, `transmittance`) |
+//! | `plastic`, `roughplastic` (`diffuse_reflectance` default 0.5, `int_ior` default polypropylene, `nonlinear`) | `plastic`, `roughplastic` (`reflectance`, `ior`, `nonlinear`) |
+//! | `twosided` around one BSDF / two BSDFs | that BSDF with `two_sided = true` / with `back` |
+//! | `blendbsdf` (`weight`, two BSDFs) | `blend` (`weight`, `materials`) |
+//! | `mask` (`opacity`, one BSDF) | that BSDF with `opacity` |
+//! | `bumpmap` (a texture, `scale`, one BSDF) / `normalmap` (`normalmap`, one BSDF) | that BSDF with `bump_map`, `bump_scale` / `normal_map` |
 //!
-//! Mitsuba's reflecting BSDFs are one-sided (black from behind) unless wrapped in `twosided`,
-//! so they become `two_sided = false`. Dielectrics scatter from both sides in Mitsuba (the
-//! inside refracts with the inverse ratio), which is what the kind itself means, so their
-//! `two_sided` is left unset.
+//! Every parameter Mitsuba textures may be a `<texture>` (see `mitsuba/texture.rs`).
+//! Microfacets default to Beckmann (α 0.1), as Mitsuba's do. Mitsuba's reflecting BSDFs are
+//! one-sided (black from behind) unless wrapped in `twosided`, so they become
+//! `two_sided = false`. Dielectrics scatter from both sides in Mitsuba (the inside refracts
+//! with the inverse ratio), which is what the kind itself means, so their `two_sided` is left
+//! unset.
+//!
+//! A `mask`'s cut-away parts let shadow rays through in lucent (as a cut-out should, and as
+//! glTF's alpha requires); Mitsuba's shadow rays are blocked by them, so a masked surface
+//! that stands between a light and what it lights renders darker shadows in Mitsuba.
 
 use super::Convert;
 use super::ior;
-use super::props::{Colorish, Plugin};
+use super::props::Plugin;
+use super::texture::{param, param_or};
 use super::xml::{Element, Loc};
-use crate::desc::{Color, DiffuseDesc, Finite, MaterialDesc, MaterialKind};
+use crate::desc::{Finite, MaterialDesc, MaterialKind, TextureDesc};
 use crate::error::LoadError;
 use lucent::Rgb;
 use std::collections::{HashMap, HashSet};
@@ -34,10 +44,11 @@ pub const TYPES: &[&str] = &[
     "plastic",
     "roughplastic",
     "twosided",
+    "blendbsdf",
+    "mask",
+    "bumpmap",
+    "normalmap",
 ];
-
-/// The conductors Mitsuba names that lucent knows as `metal`.
-const METALS: &[&str] = &["Au", "Ag", "Cu", "Al"];
 
 /// Deepest nesting of BSDFs (`twosided` in `twosided` …), against reference cycles.
 const MAX_NESTING: usize = 8;
@@ -83,6 +94,11 @@ impl Materials {
         self.seen.contains(&std::ptr::from_ref(el))
     }
 
+    /// Notes that `el` has been read.
+    pub fn mark_seen(&mut self, el: &Element) {
+        self.seen.insert(el);
+    }
+
     fn push(&mut self, m: MaterialDesc) -> usize {
         self.list.push(m);
         self.list.len() - 1
@@ -105,11 +121,19 @@ fn short(loc: &Loc) -> String {
 /// The name of the material of the `<bsdf>` `el`, described and added on first use; named by
 /// its `id`, or after its type and place.
 pub fn material<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<String, LoadError> {
+    material_at(cx, el, 0)
+}
+
+fn material_at<'a>(
+    cx: &mut Convert<'a>,
+    el: &'a Element,
+    depth: usize,
+) -> Result<String, LoadError> {
     let key: *const Element = el;
     if let Some(&i) = cx.materials.by_element.get(&key) {
         return Ok(cx.materials.name(i));
     }
-    let mut desc = describe(cx, el, 0)?;
+    let mut desc = describe(cx, el, depth)?;
     let name = match el.value("id") {
         Some(id) => id.to_string(),
         None => {
@@ -129,10 +153,10 @@ pub fn default_material(cx: &mut Convert) -> String {
         return cx.materials.name(i);
     }
     let name = cx.materials.unique("default diffuse".to_string());
-    let mut m = MaterialDesc::named(&name);
-    m.kind = Some(Spanned::new(0..0, MaterialKind::Diffuse));
-    m.reflectance = Some(DiffuseDesc::Solid(Rgb::gray(0.5)));
+    let mut m = MaterialDesc::of_kind(&name, MaterialKind::Diffuse);
+    m.reflectance = Some(TextureDesc::gray(0.5));
     m.two_sided = Some(false);
+    m.vertex_colors = Some(false);
     let i = cx.materials.push(m);
     cx.materials.default = Some(i);
     name
@@ -151,9 +175,29 @@ pub fn emissive(cx: &mut Convert, base: &str, radiance: Rgb, at: &Loc) -> String
         .unique(format!("{base} emitting at {}", short(at)));
     let mut m = cx.materials.list[index].clone();
     m.name = Spanned::new(0..0, name.clone());
-    m.emission = Some(Color(radiance));
+    m.emission = Some(TextureDesc::Solid(radiance));
     cx.materials.push(m);
     name
+}
+
+fn spanned<T>(v: T) -> Spanned<T> {
+    Spanned::new(0..0, v)
+}
+
+fn finite(v: f64) -> Option<Spanned<Finite>> {
+    Some(spanned(Finite(v as f32)))
+}
+
+/// The one nested BSDF of a wrapper (`mask`, `bumpmap`, `normalmap`, `twosided`).
+fn one_bsdf<'a>(p: &Plugin<'a>, el: &'a Element) -> Result<&'a Element, LoadError> {
+    let inner = p.take("bsdf");
+    match inner[..] {
+        [one] => Ok(one.el),
+        [] => Err(el.loc.error(format!("a {} needs one bsdf inside", p.kind))),
+        _ => Err(inner[1]
+            .at
+            .error(format!("a {} holds one bsdf; this is a second", p.kind))),
+    }
 }
 
 /// The description of the `<bsdf>` `el` (its name left empty).
@@ -167,16 +211,16 @@ pub fn describe<'a>(
             "BSDFs nested more than {MAX_NESTING} deep (does a <ref> refer to its own bsdf?)"
         )));
     }
-    cx.materials.seen.insert(el);
+    cx.materials.mark_seen(el);
     let p = cx.plugin(el)?;
     let mut m = MaterialDesc::named("");
-    let kind = |k| Some(Spanned::new(0..0, k));
-    let finite = |v: f64| Some(Spanned::new(0..0, Finite(v as f32)));
+    m.vertex_colors = Some(false);
+    let kind = |k| Some(spanned(k));
     let mut silent: &[&str] = &[];
     match p.kind {
         "diffuse" => {
             m.kind = kind(MaterialKind::Diffuse);
-            m.reflectance = Some(diffuse(cx, &p, "reflectance")?);
+            m.reflectance = Some(param_or(cx, &p, "reflectance", 0.5)?);
             m.two_sided = Some(false);
         }
         "conductor" | "roughconductor" => {
@@ -186,69 +230,158 @@ pub fn describe<'a>(
             } else {
                 MaterialKind::Conductor
             });
-            conductor(&p, &mut m)?;
-            m.specular = p.color("specular_reflectance")?.map(Color);
+            conductor(cx, &p, &mut m)?;
+            m.specular = param(cx, &p, "specular_reflectance")?;
             if rough {
-                m.roughness = finite(roughness(cx, &p)?);
+                microfacets(cx, &p, &mut m, true)?;
                 silent = &["sample_visible"];
             }
             m.two_sided = Some(false);
         }
         "dielectric" | "roughdielectric" | "thindielectric" => {
-            let rough = p.kind == "roughdielectric";
-            m.kind = kind(if rough {
-                MaterialKind::RoughDielectric
-            } else {
-                MaterialKind::Dielectric
+            m.kind = kind(match p.kind {
+                "roughdielectric" => MaterialKind::RoughDielectric,
+                "thindielectric" => MaterialKind::ThinDielectric,
+                _ => MaterialKind::Dielectric,
             });
-            if p.kind == "thindielectric" {
-                p.warn(
-                    &el.loc,
-                    "a thindielectric (a thin sheet: no offset through it) is read as a solid dielectric",
-                );
-            }
             m.ior = finite(ior::read(&p, "int_ior", "bk7")?);
             m.ext_ior = finite(ior::read(&p, "ext_ior", "air")?);
-            m.specular = p.color("specular_reflectance")?.map(Color);
-            m.transmittance = p.color("specular_transmittance")?.map(Color);
-            if rough {
-                m.roughness = finite(roughness(cx, &p)?);
+            m.specular = param(cx, &p, "specular_reflectance")?;
+            m.transmittance = param(cx, &p, "specular_transmittance")?;
+            if p.kind == "roughdielectric" {
+                microfacets(cx, &p, &mut m, true)?;
                 silent = &["sample_visible"];
             }
         }
         "plastic" | "roughplastic" => {
-            m.kind = kind(MaterialKind::Plastic);
-            m.reflectance = Some(diffuse(cx, &p, "diffuse_reflectance")?);
-            m.specular = p.color("specular_reflectance")?.map(Color);
+            let rough = p.kind == "roughplastic";
+            m.kind = kind(if rough {
+                MaterialKind::RoughPlastic
+            } else {
+                MaterialKind::Plastic
+            });
+            m.reflectance = Some(param_or(cx, &p, "diffuse_reflectance", 0.5)?);
+            m.specular = param(cx, &p, "specular_reflectance")?;
             m.ior = finite(ior::read(&p, "int_ior", "polypropylene")?);
             m.ext_ior = finite(ior::read(&p, "ext_ior", "air")?);
-            if p.kind == "roughplastic" {
-                m.roughness = finite(roughness(cx, &p)?);
+            if p.boolean("nonlinear")? == Some(true) {
+                m.nonlinear = Some(true);
+            }
+            if rough {
+                microfacets(cx, &p, &mut m, false)?;
                 silent = &["sample_visible"];
             }
             m.two_sided = Some(false);
         }
         "twosided" => {
             let inner = p.take("bsdf");
-            let one = match inner[..] {
-                [one] => one,
-                [] => return Err(el.loc.error("a twosided bsdf needs one bsdf inside")),
-                _ => {
-                    return Err(inner[1].at.error(
-                        "a twosided bsdf with different front and back bsdfs is not read by lucent",
-                    ));
+            match inner[..] {
+                [one] => {
+                    m = describe(cx, one.el, depth + 1)?;
+                    if matches!(
+                        m.kind(),
+                        MaterialKind::Dielectric
+                            | MaterialKind::RoughDielectric
+                            | MaterialKind::ThinDielectric
+                    ) {
+                        return Err(one.at.error(
+                            "a twosided bsdf cannot hold a dielectric (it has two sides already)",
+                        ));
+                    }
+                    m.two_sided = Some(true);
                 }
-            };
-            m = describe(cx, one.el, depth + 1)?;
-            if matches!(
-                m.kind(),
-                MaterialKind::Dielectric | MaterialKind::RoughDielectric
-            ) {
-                return Err(one
-                    .at
-                    .error("a twosided bsdf cannot hold a dielectric (it has two sides already)"));
+                [front, back] => {
+                    m = describe(cx, front.el, depth + 1)?;
+                    let back = material_at(cx, back.el, depth + 1)?;
+                    m.back = Some(spanned(back));
+                    m.two_sided = Some(true);
+                }
+                [] => {
+                    return Err(el
+                        .loc
+                        .error("a twosided bsdf needs one or two bsdfs inside"));
+                }
+                _ => {
+                    return Err(inner[2]
+                        .at
+                        .error("a twosided bsdf holds one or two bsdfs; this is a third"));
+                }
             }
-            m.two_sided = Some(true);
+        }
+        "blendbsdf" => {
+            let inner = p.take("bsdf");
+            let [a, b] = inner[..] else {
+                return Err(el.loc.error(format!(
+                    "a blendbsdf blends two bsdfs; it holds {}",
+                    inner.len()
+                )));
+            };
+            m.kind = kind(MaterialKind::Blend);
+            m.weight = Some(spanned(param_or(cx, &p, "weight", 0.5)?));
+            let first = material_at(cx, a.el, depth + 1)?;
+            let second = material_at(cx, b.el, depth + 1)?;
+            let sided = [&first, &second].map(|n| {
+                cx.materials
+                    .list
+                    .iter()
+                    .find(|d| d.name.get_ref() == n)
+                    .and_then(|d| d.two_sided)
+            });
+            // Two-sidedness is the whole material's in lucent: both parts', or one-sided.
+            m.two_sided = match sided {
+                [Some(true), Some(true)] => Some(true),
+                [Some(true), Some(false)] | [Some(false), Some(true)] => {
+                    p.warn(
+                        &el.loc,
+                        "a blendbsdf of a two-sided and a one-sided bsdf is read as one-sided",
+                    );
+                    Some(false)
+                }
+                [None, None] => None,
+                _ => Some(false),
+            };
+            m.materials = Some(spanned(vec![first, second]));
+        }
+        "mask" => {
+            let inner = one_bsdf(&p, el)?;
+            let opacity = param_or(cx, &p, "opacity", 0.5)?;
+            m = describe(cx, inner, depth + 1)?;
+            if m.opacity.is_some() {
+                return Err(el.loc.error("a mask inside a mask is not read by lucent"));
+            }
+            m.opacity = Some(spanned(opacity));
+        }
+        "bumpmap" => {
+            let textures = p.take("texture");
+            let [height] = textures[..] else {
+                return Err(el.loc.error("a bumpmap needs one texture inside"));
+            };
+            let height = super::texture::texture(cx, height.el)?;
+            let scale = p.float_or("scale", 1.0)?;
+            let inner = one_bsdf(&p, el)?;
+            m = describe(cx, inner, depth + 1)?;
+            if m.bump_map.is_some() || m.normal_map.is_some() {
+                return Err(el
+                    .loc
+                    .error("a bumpmap around a bump or normal map is not read by lucent"));
+            }
+            m.bump_map = Some(spanned(height));
+            if scale != 1.0 {
+                m.bump_scale = finite(scale);
+            }
+        }
+        "normalmap" => {
+            let Some(normals) = param(cx, &p, "normalmap")? else {
+                return Err(el.loc.error("a normalmap needs its `normalmap` texture"));
+            };
+            let inner = one_bsdf(&p, el)?;
+            m = describe(cx, inner, depth + 1)?;
+            if m.bump_map.is_some() || m.normal_map.is_some() {
+                return Err(el
+                    .loc
+                    .error("a normalmap around a bump or normal map is not read by lucent"));
+            }
+            m.normal_map = Some(spanned(normals));
         }
         other => return Err(super::unknown_type(el, other)),
     }
@@ -256,131 +389,117 @@ pub fn describe<'a>(
     Ok(m)
 }
 
-/// A diffuse albedo: a colour (default 0.5) or a `bitmap` texture's file.
-fn diffuse<'a>(cx: &mut Convert<'a>, p: &Plugin<'a>, name: &str) -> Result<DiffuseDesc, LoadError> {
-    Ok(match p.color_or_texture(name)? {
-        None => DiffuseDesc::Solid(Rgb::gray(0.5)),
-        Some(Colorish::Color(c)) => DiffuseDesc::Solid(c),
-        Some(Colorish::Texture(t)) => DiffuseDesc::Image(bitmap(cx, t)?),
-    })
-}
-
-/// The file of a `<texture type="bitmap">`, as written (relative to the scene's folder).
-pub fn bitmap<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<String, LoadError> {
-    cx.materials.seen.insert(el);
-    let t = cx.plugin(el)?;
-    if t.kind != "bitmap" {
-        return Err(super::unknown_type(el, t.kind));
-    }
-    let (file, loc) = t.required_string("filename")?;
-    let file = cx.file_name(file, loc, "image")?;
-    if t.boolean("raw")? == Some(true) {
-        t.warn(
-            &el.loc,
-            "`raw` is not read: lucent decodes 8-bit images as sRGB and float images as linear",
-        );
-    }
-    t.finish(&mut cx.warnings, &[]);
-    Ok(file)
-}
-
 /// A conductor's `material` (default `none`: Mitsuba's perfect mirror) or `eta` and `k`.
-fn conductor(p: &Plugin, m: &mut MaterialDesc) -> Result<(), LoadError> {
-    let eta = p.color("eta")?;
-    let k = p.color("k")?;
+fn conductor<'a>(
+    cx: &mut Convert<'a>,
+    p: &Plugin<'a>,
+    m: &mut MaterialDesc,
+) -> Result<(), LoadError> {
+    let eta = param(cx, p, "eta")?;
+    let k = param(cx, p, "k")?;
     match p.string("material")? {
-        None | Some(("none", _)) => {
+        None | Some(("none", _)) if eta.is_none() && k.is_none() => {
             // Mitsuba's "none" is η = 0, k = 1: a Fresnel reflectance of 1 at every angle.
-            m.eta = Some(Color(eta.unwrap_or(Rgb::BLACK)));
-            m.k = Some(Color(k.unwrap_or(Rgb::WHITE)));
+            m.eta = Some(TextureDesc::gray(0.0));
+            m.k = Some(TextureDesc::gray(1.0));
+        }
+        None => {
+            m.eta = Some(eta.unwrap_or(TextureDesc::gray(0.0)));
+            m.k = Some(k.unwrap_or(TextureDesc::gray(1.0)));
         }
         Some((name, loc)) => {
             if eta.is_some() || k.is_some() {
                 return Err(loc.error("give either `material` or `eta` and `k`, not both"));
             }
-            if !METALS.contains(&name) {
+            if name == "none" {
+                m.eta = Some(TextureDesc::gray(0.0));
+                m.k = Some(TextureDesc::gray(1.0));
+            } else if lucent::material::metals::metal(name).is_some() {
+                m.metal = Some(spanned(name.to_string()));
+            } else {
                 return Err(loc.error(format!(
-                    "conductor material `{name}`: lucent knows {} and none; give `eta` and `k` instead",
-                    METALS.join(", ")
+                    "conductor material `{name}` is not one Mitsuba knows; give `eta` and `k` instead"
                 )));
             }
-            m.metal = Some(Spanned::new(0..0, name.to_string()));
         }
     }
     Ok(())
 }
 
-/// A rough BSDF's α (default 0.1): `alpha`, or the mean of `alpha_u` and `alpha_v` (lucent's
-/// microfacets are isotropic), clamped to `[1e-4, 1]`. lucent's microfacets are GGX; Mitsuba's
-/// default, Beckmann, is read as GGX of the same α, and its place noted for one warning about
-/// them all ([`beckmann_warning`]).
-fn roughness(cx: &mut Convert, p: &Plugin) -> Result<f64, LoadError> {
-    let distribution = p.string("distribution")?;
-    match distribution.map(|(d, loc)| (d.to_lowercase(), loc)) {
-        Some((d, _)) if d == "ggx" => {}
-        Some((d, loc)) if d != "beckmann" => {
-            return Err(loc.error(format!(
-                "unknown microfacet distribution `{d}` (Mitsuba's are beckmann and ggx)"
-            )));
+/// A rough BSDF's microfacets: `distribution` (default Beckmann, as Mitsuba's), and `alpha`
+/// (default 0.1) or `alpha_u` and `alpha_v` — textures where `textured` (rough conductors and
+/// dielectrics; a rough plastic's roughness is one number). Constant values are clamped to
+/// `[1e-4, 1]`, Mitsuba's floor and lucent's roughest.
+fn microfacets<'a>(
+    cx: &mut Convert<'a>,
+    p: &Plugin<'a>,
+    m: &mut MaterialDesc,
+    textured: bool,
+) -> Result<(), LoadError> {
+    let distribution = match p.string("distribution")? {
+        None => "beckmann".to_string(),
+        Some((d, loc)) => {
+            let d = d.to_lowercase();
+            if d != "ggx" && d != "beckmann" {
+                return Err(loc.error(format!(
+                    "unknown microfacet distribution `{d}` (Mitsuba's are beckmann and ggx)"
+                )));
+            }
+            d
+        }
+    };
+    m.distribution = Some(spanned(distribution));
+    let mut alpha = |name: &str| -> Result<Option<TextureDesc>, LoadError> {
+        let v = if textured {
+            param(cx, p, name)?
+        } else {
+            p.float(name)?.map(|a| TextureDesc::gray(a as f32))
+        };
+        Ok(v.map(|t| match t {
+            TextureDesc::Solid(c) => {
+                if c.r > 1.0 {
+                    p.warn(
+                        &p.el.loc,
+                        format!(
+                            "the {}'s {name} {} is read as 1, lucent's roughest",
+                            p.what(),
+                            c.r
+                        ),
+                    );
+                }
+                TextureDesc::Solid(c.clamp(1e-4, 1.0))
+            }
+            t => t,
+        }))
+    };
+    let a = alpha("alpha")?;
+    let u = alpha("alpha_u")?;
+    let v = alpha("alpha_v")?;
+    match (a, u, v) {
+        (Some(a), None, None) => m.roughness = Some(spanned(a)),
+        (None, Some(u), Some(v)) if u == v => m.roughness = Some(spanned(u)),
+        (None, Some(u), Some(v)) => {
+            if !textured {
+                return Err(p.el.loc.error(
+                    "a roughplastic's roughness is isotropic (Mitsuba refuses alpha_u ≠ alpha_v too)",
+                ));
+            }
+            m.roughness_u = Some(spanned(u));
+            m.roughness_v = Some(spanned(v));
+        }
+        (None, None, None) => m.roughness = Some(spanned(TextureDesc::gray(0.1))),
+        (Some(_), _, _) => {
+            return Err(p
+                .el
+                .loc
+                .error("give either `alpha` or `alpha_u` and `alpha_v`, not both"));
         }
         _ => {
-            if !cx.beckmann.contains(&p.el.loc) {
-                cx.beckmann.push(p.el.loc.clone());
-            }
+            return Err(p
+                .el
+                .loc
+                .error("anisotropic roughness needs both `alpha_u` and `alpha_v`"));
         }
     }
-    let alpha = match p.float("alpha")? {
-        Some(alpha) => alpha,
-        None => {
-            let u = p.float_or("alpha_u", 0.1)?;
-            let v = p.float_or("alpha_v", 0.1)?;
-            if u != v {
-                p.warn(
-                    &p.el.loc,
-                    format!(
-                        "anisotropic roughness (alpha_u {u}, alpha_v {v}) is read as their mean {}: lucent's microfacets are isotropic",
-                        (u + v) / 2.0
-                    ),
-                );
-            }
-            (u + v) / 2.0
-        }
-    };
-    // Mitsuba clamps α to at least 1e-4 (its microfacet distribution's own floor); lucent's
-    // roughness ends at 1, the roughest surface GGX describes well.
-    if alpha > 1.0 {
-        p.warn(
-            &p.el.loc,
-            format!(
-                "the {}'s alpha {alpha} is read as 1, lucent's roughest",
-                p.what()
-            ),
-        );
-    }
-    Ok(alpha.clamp(1e-4, 1.0))
-}
-
-/// The one warning about every rough BSDF (at `places`) whose Beckmann microfacets are read as
-/// GGX; `None` when there are none.
-pub fn beckmann_warning(places: &[Loc]) -> Option<String> {
-    let (first, others) = places.split_first()?;
-    let also = match others.len() {
-        0 => "the rough BSDF here uses".to_string(),
-        n => {
-            const LISTED: usize = 3;
-            let listed: Vec<String> = others.iter().take(LISTED).map(short).collect();
-            let more = if n > LISTED {
-                format!(" and {} more", n - LISTED)
-            } else {
-                String::new()
-            };
-            format!(
-                "the rough BSDFs here and at {}{more} use",
-                listed.join(", ")
-            )
-        }
-    };
-    Some(first.warning(format!(
-        "{also} Mitsuba's default Beckmann microfacets, read as GGX with the same alpha"
-    )))
+    Ok(())
 }

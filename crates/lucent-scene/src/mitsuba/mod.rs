@@ -39,12 +39,12 @@
 //! the included file when that is where it is; so what the build would refuse (a radius, a
 //! resolution, a camera out of its range) is refused here first. What lucent reads but cannot
 //! render as Mitsuba would (an approximation, an unread parameter) becomes a warning naming the
-//! place, one line per plugin and reason; Beckmann microfacets get one line for the whole scene.
+//! place, one line per plugin and reason.
 //! The description itself carries no positions (its spans are empty): one description may come
 //! from several files.
 //!
-//! Not read: participating media, textures other than `bitmap` (and textures anywhere but a
-//! diffuse albedo), spectra from files or plugins, sensors other than `perspective`, BSDFs,
+//! Not read: participating media, textures other than `bitmap`, `checkerboard` and
+//! `mesh_attribute`, spectra from files or plugins, sensors other than `perspective`, BSDFs,
 //! shapes and emitters beyond those listed in each module, `<alias>` and `<path>`, and
 //! Mitsuba 0.x files (version < 2, whose parameter names differ).
 
@@ -54,6 +54,7 @@ pub mod ior;
 pub mod props;
 pub mod sensor;
 pub mod shape;
+pub mod texture;
 pub mod transform;
 pub mod xml;
 
@@ -88,7 +89,6 @@ pub fn import_mitsuba(
         options: *options,
         base_dir: path.parent().map_or_else(PathBuf::new, Path::to_path_buf),
         warnings: Vec::new(),
-        beckmann: Vec::new(),
         environment: None,
     };
     let (width, height) = sensor::DEFAULT_FILM;
@@ -174,11 +174,8 @@ pub fn import_mitsuba(
         } else if el.tag == "bsdf" {
             bsdf::describe(&mut cx, el, 0)?;
         } else {
-            bsdf::bitmap(&mut cx, el)?;
+            texture::texture(&mut cx, el)?;
         }
-    }
-    if let Some(warning) = bsdf::beckmann_warning(&cx.beckmann) {
-        cx.warnings.push(warning);
     }
     // A plugin read twice (a referenced texture, a BSDF used alone and inside a twosided)
     // would repeat its warnings word for word.
@@ -209,8 +206,6 @@ pub struct Convert<'a> {
     pub warnings: Vec<String>,
     /// The materials made so far.
     pub materials: bsdf::Materials,
-    /// Where rough BSDFs with Beckmann microfacets are, for one warning line about them all.
-    pub beckmann: Vec<Loc>,
     /// Where the environment emitter is, once one has been read.
     pub environment: Option<Loc>,
 }
@@ -250,7 +245,7 @@ fn known_types(tag: &str) -> Option<&'static [&'static str]> {
         "sampler" => sensor::SAMPLERS,
         "rfilter" => sensor::FILTERS,
         "integrator" => sensor::INTEGRATORS,
-        "texture" => &["bitmap"],
+        "texture" => texture::TYPES,
         _ => return None,
     })
 }

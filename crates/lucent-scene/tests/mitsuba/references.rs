@@ -4,7 +4,7 @@ use super::support::*;
 use glam::Vec3;
 use lucent::Rgb;
 use lucent_scene::SceneFile;
-use lucent_scene::desc::{DiffuseDesc, ObjectKind};
+use lucent_scene::desc::{ObjectKind, TextureDesc};
 
 #[test]
 fn defaults_fill_in_names_and_an_undefined_name_is_refused_at_its_value() {
@@ -32,7 +32,7 @@ fn defaults_fill_in_names_and_an_undefined_name_is_refused_at_its_value() {
     );
     assert_eq!(
         material(&imported, o.material.get_ref()).reflectance,
-        Some(DiffuseDesc::Solid(Rgb::new(0.1, 0.2, 0.3)))
+        Some(TextureDesc::Solid(Rgb::new(0.1, 0.2, 0.3)))
     );
 
     let text = scene(
@@ -175,7 +175,7 @@ fn a_ref_shares_one_bsdf_and_an_unknown_one_is_refused() {
     assert_eq!(material(&imported, "white").two_sided, Some(false));
     let both = material(&imported, "both");
     assert_eq!(both.two_sided, Some(true));
-    assert_eq!(both.reflectance, Some(DiffuseDesc::Solid(Rgb::gray(0.8))));
+    assert_eq!(both.reflectance, Some(TextureDesc::Solid(Rgb::gray(0.8))));
     load(&path);
 
     let text = scene(r#"    <shape type="cube"><ref id="whit"/></shape>"#);

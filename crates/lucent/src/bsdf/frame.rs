@@ -33,6 +33,33 @@ impl Frame {
         }
     }
 
+    /// A frame around the unit normal `n` whose first tangent follows `tangent` (a surface's
+    /// `∂p/∂u`, projected onto the plane of `n`), as Mitsuba builds its shading frame, so that
+    /// anisotropic roughness and tangent-space normal maps line up with the texture. Falls back
+    /// to [`Frame::from_normal`] when `tangent` is (nearly) parallel to `n`, zero or not finite.
+    pub fn from_normal_tangent(n: Vec3, tangent: Vec3) -> Self {
+        let s = tangent - n * n.dot(tangent);
+        let len2 = s.length_squared();
+        if !len2.is_finite() || len2 <= 1e-12 * tangent.length_squared() {
+            return Self::from_normal(n);
+        }
+        let s = s / len2.sqrt();
+        Self {
+            s,
+            t: n.cross(s),
+            n,
+        }
+    }
+
+    /// The same frame seen from the other side: `(s, −t, −n)`, still right-handed.
+    pub fn flipped(&self) -> Self {
+        Self {
+            s: self.s,
+            t: -self.t,
+            n: -self.n,
+        }
+    }
+
     /// `v` (world) in this frame's coordinates: `(v·s, v·t, v·n)`.
     #[inline]
     pub fn to_local(&self, v: Vec3) -> Vec3 {
@@ -83,6 +110,32 @@ mod tests {
             }
             assert!((f.s.cross(f.t) - f.n).length() < 1e-5, "{n}: left-handed");
         }
+    }
+
+    #[test]
+    fn a_tangent_frame_follows_its_tangent_and_falls_back_when_it_cannot() {
+        for n in normals() {
+            let tangent = Vec3::new(0.3, 0.9, -0.2);
+            let f = Frame::from_normal_tangent(n, tangent);
+            assert!((f.s.cross(f.t) - f.n).length() < 1e-4, "{n}: left-handed");
+            assert!(f.s.dot(n).abs() < 1e-4 && (f.s.length() - 1.0).abs() < 1e-4);
+            if n.cross(tangent.normalize()).length() > 0.1 {
+                assert!(
+                    f.s.dot(tangent) > 0.0,
+                    "{n}: s turned away from the tangent"
+                );
+            }
+            let back = f.flipped();
+            assert!((back.s.cross(back.t) - back.n).length() < 1e-4 && back.n == -n);
+        }
+        assert_eq!(
+            Frame::from_normal_tangent(Vec3::Z, Vec3::Z * 2.0),
+            Frame::from_normal(Vec3::Z)
+        );
+        assert_eq!(
+            Frame::from_normal_tangent(Vec3::Z, Vec3::NAN),
+            Frame::from_normal(Vec3::Z)
+        );
     }
 
     #[test]

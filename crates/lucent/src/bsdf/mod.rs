@@ -30,8 +30,8 @@
 //!
 //! Each variant cites the Mitsuba 3 plugin it reproduces; a scene converted from Mitsuba maps
 //! `int_ior/ext_ior` to `eta`, `specular_reflectance` to `specular`, `specular_transmittance`
-//! to `transmittance`, `diffuse_reflectance` to `diffuse` or `albedo`, and GGX `alpha` to
-//! `alpha`.
+//! to `transmittance`, `diffuse_reflectance` to `diffuse` or `albedo`, and `distribution`,
+//! `alpha` (or `alpha_u`, `alpha_v`) to a [`Microfacet`].
 //!
 //! # Adding a variant
 //! 1. Write `bsdf/name.rs`: a plain struct of the variant's parameters with `eval`, `pdf` and
@@ -56,6 +56,8 @@ mod lambert;
 mod plastic;
 mod rough_conductor;
 mod rough_dielectric;
+pub mod rough_plastic;
+mod thin_dielectric;
 
 #[cfg(test)]
 mod chi2;
@@ -63,6 +65,8 @@ mod chi2;
 mod tests;
 
 pub use frame::Frame;
+pub use microfacet::{Distribution, Microfacet};
+pub use rough_plastic::RoughCoat;
 
 use classic::Classic;
 use conductor::Conductor;
@@ -71,6 +75,8 @@ use lambert::Lambert;
 use plastic::Plastic;
 use rough_conductor::RoughConductor;
 use rough_dielectric::RoughDielectric;
+use rough_plastic::RoughPlastic;
+use thin_dielectric::ThinDielectric;
 
 /// Which quantity a path carries: radiance (camera paths) or importance (light paths, for a
 /// later photon mapper). Refraction scales radiance by 1/η² but not importance.
@@ -117,11 +123,12 @@ impl BsdfSample {
 /// A surface's scattering function: one of a closed set of models, each in its own file.
 ///
 /// Colours are per-channel coefficients in `[0, 1]` unless said otherwise; indices of
-/// refraction are relative (`η_inside / η_outside`, the inside being `z < 0`); `alpha` is the
-/// GGX roughness (`α = roughness²` in the Disney convention), clamped to at least
-/// [`microfacet::ALPHA_MIN`].
+/// refraction are relative (`η_inside / η_outside`, the inside being `z < 0`); rough variants
+/// take a [`Microfacet`] distribution (GGX or Beckmann, roughness `α` along the frame's `x` and
+/// `y`; `α = roughness²` in the Disney convention). Variants that need tables computed when the
+/// scene is built borrow them (`'a`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Bsdf {
+pub enum Bsdf<'a> {
     /// Ideal diffuse reflection, `f = albedo/π` (Mitsuba `diffuse`).
     Lambert {
         /// Hemispherical reflectance.
@@ -137,8 +144,8 @@ pub enum Bsdf {
         /// A factor on the reflection; 1 for physical realism.
         specular: Rgb,
     },
-    /// A rough metal: GGX microfacets with the conductor's Fresnel, visible-normal sampling
-    /// (Mitsuba `roughconductor`, `distribution = ggx`, `sample_visible = true`).
+    /// A rough metal: microfacets with the conductor's Fresnel, visible-normal sampling
+    /// (Mitsuba `roughconductor`, `sample_visible = true`).
     RoughConductor {
         /// Real part of the metal's index, per channel.
         eta: Rgb,
@@ -146,8 +153,8 @@ pub enum Bsdf {
         k: Rgb,
         /// A factor on the reflection; 1 for physical realism.
         specular: Rgb,
-        /// GGX roughness, isotropic, in (0, 1].
-        alpha: f32,
+        /// The facets' distribution and roughness.
+        microfacet: Microfacet,
     },
     /// Smooth glass: mirror reflection with probability `F`, refraction with `1 − F`, exact
     /// unpolarised Fresnel and total internal reflection (Mitsuba `dielectric`).
@@ -159,8 +166,8 @@ pub enum Bsdf {
         /// A factor on the transmission; 1 for physical realism.
         transmittance: Rgb,
     },
-    /// Rough glass: GGX microfacet reflection and refraction of Walter et al. 2007 with
-    /// visible-normal sampling (Mitsuba `roughdielectric`, `ggx`, `sample_visible = true`).
+    /// Rough glass: microfacet reflection and refraction of Walter et al. 2007 with
+    /// visible-normal sampling (Mitsuba `roughdielectric`, `sample_visible = true`).
     RoughDielectric {
         /// `η_inside / η_outside`.
         eta: f32,
@@ -168,12 +175,20 @@ pub enum Bsdf {
         specular: Rgb,
         /// A factor on the transmission.
         transmittance: Rgb,
-        /// GGX roughness in (0, 1].
-        alpha: f32,
+        /// The facets' distribution and roughness.
+        microfacet: Microfacet,
     },
-    /// A diffuse base under a dielectric coat. `alpha = 0`: a smooth coat, Mitsuba `plastic`
-    /// (`nonlinear = false`); `alpha > 0`: a GGX coat like Mitsuba `roughplastic`, with the
-    /// coat's transmittance approximated by the smooth `1 − F` (see `bsdf/plastic.rs`).
+    /// A thin sheet of glass: both faces reflect, the rest passes straight through, unbent
+    /// (Mitsuba `thindielectric`).
+    ThinDielectric {
+        /// `η_sheet / η_outside`.
+        eta: f32,
+        /// A factor on the reflection.
+        specular: Rgb,
+        /// A factor on the transmission.
+        transmittance: Rgb,
+    },
+    /// A diffuse base under a smooth dielectric coat (Mitsuba `plastic`).
     Plastic {
         /// Reflectance of the diffuse base.
         diffuse: Rgb,
@@ -181,8 +196,21 @@ pub enum Bsdf {
         eta: f32,
         /// A factor on the coat's reflection; 1 for physical realism.
         specular: Rgb,
-        /// GGX roughness of the coat; 0 for a smooth coat.
-        alpha: f32,
+        /// Sum the base's internal bounces (`ρ/(1 − ρ F_dr)`) instead of Mitsuba's default,
+        /// colour-preserving `ρ/(1 − F_dr)`.
+        nonlinear: bool,
+    },
+    /// A diffuse base under a rough dielectric coat, with the coat's tabulated rough
+    /// transmittance (Mitsuba `roughplastic`).
+    RoughPlastic {
+        /// Reflectance of the diffuse base.
+        diffuse: Rgb,
+        /// A factor on the coat's reflection; 1 for physical realism.
+        specular: Rgb,
+        /// As for [`Bsdf::Plastic`].
+        nonlinear: bool,
+        /// The coat: index, microfacets and tables.
+        coat: &'a RoughCoat,
     },
     /// The Whitted material's coefficients as lobes for a path tracer: Lambert `kd`, a
     /// normalised Phong lobe `ks` of exponent `shininess`, a mirror `kr` and a refraction `kt`
@@ -206,19 +234,21 @@ pub enum Bsdf {
 }
 
 /// A variant's parameters as the type that implements it (one per file).
-enum Model {
+enum Model<'a> {
     Lambert(Lambert),
     Conductor(Conductor),
     RoughConductor(RoughConductor),
     Dielectric(Dielectric),
     RoughDielectric(RoughDielectric),
+    ThinDielectric(ThinDielectric),
     Plastic(Plastic),
+    RoughPlastic(RoughPlastic<'a>),
     Classic(Classic),
 }
 
-impl Bsdf {
+impl<'a> Bsdf<'a> {
     /// The implementing type of this variant, with its parameters.
-    fn model(&self) -> Model {
+    fn model(&self) -> Model<'a> {
         match *self {
             Bsdf::Lambert { albedo } => Model::Lambert(Lambert { albedo }),
             Bsdf::Conductor { eta, k, specular } => {
@@ -228,8 +258,8 @@ impl Bsdf {
                 eta,
                 k,
                 specular,
-                alpha,
-            } => Model::RoughConductor(RoughConductor::new(eta, k, specular, alpha)),
+                microfacet,
+            } => Model::RoughConductor(RoughConductor::new(eta, k, specular, microfacet)),
             Bsdf::Dielectric {
                 eta,
                 specular,
@@ -239,14 +269,30 @@ impl Bsdf {
                 eta,
                 specular,
                 transmittance,
-                alpha,
-            } => Model::RoughDielectric(RoughDielectric::new(eta, specular, transmittance, alpha)),
+                microfacet,
+            } => Model::RoughDielectric(RoughDielectric::new(
+                eta,
+                specular,
+                transmittance,
+                microfacet,
+            )),
+            Bsdf::ThinDielectric {
+                eta,
+                specular,
+                transmittance,
+            } => Model::ThinDielectric(ThinDielectric::new(eta, specular, transmittance)),
             Bsdf::Plastic {
                 diffuse,
                 eta,
                 specular,
-                alpha,
-            } => Model::Plastic(Plastic::new(diffuse, eta, specular, alpha)),
+                nonlinear,
+            } => Model::Plastic(Plastic::new(diffuse, eta, specular, nonlinear)),
+            Bsdf::RoughPlastic {
+                diffuse,
+                specular,
+                nonlinear,
+                coat,
+            } => Model::RoughPlastic(RoughPlastic::new(diffuse, specular, nonlinear, coat)),
             Bsdf::Classic {
                 kd,
                 ks,
@@ -264,10 +310,11 @@ impl Bsdf {
     pub fn eval(&self, wo: Vec3, wi: Vec3, mode: Transport) -> Rgb {
         let f = match self.model() {
             Model::Lambert(b) => b.eval(wo, wi),
-            Model::Conductor(_) | Model::Dielectric(_) => Rgb::BLACK,
+            Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => Rgb::BLACK,
             Model::RoughConductor(b) => b.eval(wo, wi),
             Model::RoughDielectric(b) => b.eval(wo, wi, mode),
             Model::Plastic(b) => b.eval(wo, wi),
+            Model::RoughPlastic(b) => b.eval(wo, wi),
             Model::Classic(b) => b.eval(wo, wi),
         };
         debug_assert!(f.is_finite(), "{self:?}.eval({wo}, {wi}) = {f:?}");
@@ -281,10 +328,11 @@ impl Bsdf {
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         let p = match self.model() {
             Model::Lambert(b) => b.pdf(wo, wi),
-            Model::Conductor(_) | Model::Dielectric(_) => 0.0,
+            Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => 0.0,
             Model::RoughConductor(b) => b.pdf(wo, wi),
             Model::RoughDielectric(b) => b.pdf(wo, wi),
             Model::Plastic(b) => b.pdf(wo, wi),
+            Model::RoughPlastic(b) => b.pdf(wo, wi),
             Model::Classic(b) => b.pdf(wo, wi),
         };
         debug_assert!(p.is_finite() && p >= 0.0, "{self:?}.pdf({wo}, {wi}) = {p}");
@@ -302,7 +350,9 @@ impl Bsdf {
             Model::RoughConductor(b) => b.sample(wo, u),
             Model::Dielectric(b) => b.sample(wo, u_lobe, mode),
             Model::RoughDielectric(b) => b.sample(wo, u_lobe, u, mode),
+            Model::ThinDielectric(b) => b.sample(wo, u_lobe),
             Model::Plastic(b) => b.sample(wo, u_lobe, u),
+            Model::RoughPlastic(b) => b.sample(wo, u_lobe, u),
             Model::Classic(b) => b.sample(wo, u_lobe, u, mode),
         }?;
         debug_assert!(
@@ -321,8 +371,8 @@ impl Bsdf {
     /// True when every lobe is a Dirac delta (light sampling is useless there).
     pub fn is_delta(&self) -> bool {
         match self.model() {
-            Model::Lambert(_) | Model::RoughConductor(_) => false,
-            Model::Conductor(_) | Model::Dielectric(_) => true,
+            Model::Lambert(_) | Model::RoughConductor(_) | Model::RoughPlastic(_) => false,
+            Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => true,
             Model::RoughDielectric(b) => b.is_delta(),
             Model::Plastic(b) => b.is_delta(),
             Model::Classic(b) => b.is_delta(),
@@ -334,8 +384,8 @@ impl Bsdf {
     /// a Whitted material's `kr` and `kt` beside its `kd`).
     pub fn delta_share(&self, wo: Vec3) -> f32 {
         match self.model() {
-            Model::Lambert(_) | Model::RoughConductor(_) => 0.0,
-            Model::Conductor(_) | Model::Dielectric(_) => 1.0,
+            Model::Lambert(_) | Model::RoughConductor(_) | Model::RoughPlastic(_) => 0.0,
+            Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => 1.0,
             Model::RoughDielectric(b) => f32::from(u8::from(b.is_delta())),
             Model::Plastic(b) => b.delta_share(wo),
             Model::Classic(b) => {
@@ -351,7 +401,9 @@ impl Bsdf {
     /// True when it can transmit (light can arrive from the other side).
     pub fn transmits(&self) -> bool {
         match self {
-            Bsdf::Dielectric { .. } | Bsdf::RoughDielectric { .. } => true,
+            Bsdf::Dielectric { .. }
+            | Bsdf::RoughDielectric { .. }
+            | Bsdf::ThinDielectric { .. } => true,
             Bsdf::Classic { kt, .. } => !kt.is_black(),
             _ => false,
         }

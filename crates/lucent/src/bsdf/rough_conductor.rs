@@ -1,5 +1,6 @@
-//! A rough conductor: GGX microfacets, each a mirror with the conductor's Fresnel reflectance
-//! (Mitsuba 3 `roughconductor` with `distribution = ggx`, `sample_visible = true`).
+//! A rough conductor: microfacets (GGX or Beckmann, isotropic or anisotropic), each a mirror
+//! with the conductor's Fresnel reflectance (Mitsuba 3 `roughconductor`, `sample_visible =
+//! true`).
 //!
 //! The Torrance–Sparrow form with the half vector `h = (wo + wi)/|wo + wi|`:
 //! `f(wo, wi) = specular·F(wo·h)·D(h)·G1(wo, h)·G1(wi, h) / (4 cos θo cos θi)`.
@@ -10,7 +11,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::microfacet::Ggx;
+use super::microfacet::Microfacet;
 use super::{BsdfSample, fresnel};
 use crate::Rgb;
 use crate::optics::reflect;
@@ -20,16 +21,16 @@ pub(super) struct RoughConductor {
     eta: Rgb,
     k: Rgb,
     specular: Rgb,
-    ggx: Ggx,
+    facets: Microfacet,
 }
 
 impl RoughConductor {
-    pub fn new(eta: Rgb, k: Rgb, specular: Rgb, alpha: f32) -> Self {
+    pub fn new(eta: Rgb, k: Rgb, specular: Rgb, microfacet: Microfacet) -> Self {
         Self {
             eta,
             k,
             specular,
-            ggx: Ggx::new(alpha),
+            facets: microfacet,
         }
     }
 
@@ -45,7 +46,7 @@ impl RoughConductor {
         let Some(h) = Self::half(wo, wi) else {
             return Rgb::BLACK;
         };
-        let g = self.ggx;
+        let g = self.facets;
         let scalar = g.d(h) * g.g1(wi, h) * g.g1_over_cos(wo, h) * 0.25;
         if scalar <= 0.0 {
             return Rgb::BLACK;
@@ -58,7 +59,7 @@ impl RoughConductor {
         let Some(h) = Self::half(wo, wi) else {
             return 0.0;
         };
-        self.ggx.d(h) * self.ggx.g1_over_cos(wo, h) * 0.25
+        self.facets.d(h) * self.facets.g1_over_cos(wo, h) * 0.25
     }
 
     /// A visible normal, and `wo` mirrored about it; `None` when that goes below the horizon.
@@ -66,17 +67,17 @@ impl RoughConductor {
         if wo.z <= 0.0 {
             return None;
         }
-        let m = self.ggx.sample_visible(wo, u);
+        let m = self.facets.sample_visible(wo, u);
         let wi = reflect(-wo, m);
         if wi.z <= 0.0 {
             return None;
         }
         let weight =
-            self.specular * fresnel::conductor(wo.dot(m), self.eta, self.k) * self.ggx.g1(wi, m);
+            self.specular * fresnel::conductor(wo.dot(m), self.eta, self.k) * self.facets.g1(wi, m);
         Some(BsdfSample {
             wi,
             weight,
-            pdf: self.ggx.d(m) * self.ggx.g1_over_cos(wo, m) * 0.25,
+            pdf: self.facets.d(m) * self.facets.g1_over_cos(wo, m) * 0.25,
             delta: false,
         })
     }
@@ -90,7 +91,12 @@ mod tests {
     fn head_on_light_at_the_mirror_direction_peaks_at_d_over_4() {
         // wo = wi = n: h = n, G1 = 1, so f·cos θi = F·D(n)/4 = F/(4πα²).
         let alpha = 0.3;
-        let b = RoughConductor::new(Rgb::gray(1.5), Rgb::gray(3.0), Rgb::WHITE, alpha);
+        let b = RoughConductor::new(
+            Rgb::gray(1.5),
+            Rgb::gray(3.0),
+            Rgb::WHITE,
+            Microfacet::ggx(alpha),
+        );
         let f = b.eval(Vec3::Z, Vec3::Z);
         let fresnel = fresnel::conductor(1.0, Rgb::gray(1.5), Rgb::gray(3.0)).r;
         let want = fresnel / (4.0 * std::f32::consts::PI * alpha * alpha);

@@ -1,6 +1,7 @@
-//! Rough glass: GGX microfacets that each reflect or refract like smooth glass, after Walter,
-//! Marschner, Li & Torrance 2007, "Microfacet Models for Refraction through Rough Surfaces"
-//! (Mitsuba 3 `roughdielectric` with `distribution = ggx`, `sample_visible = true`).
+//! Rough glass: microfacets (GGX or Beckmann, isotropic or anisotropic) that each reflect or
+//! refract like smooth glass, after Walter, Marschner, Li & Torrance 2007, "Microfacet Models
+//! for Refraction through Rough Surfaces" (Mitsuba 3 `roughdielectric`, `sample_visible =
+//! true`).
 //!
 //! With `η'` the relative index in the direction of travel (`eta` from outside, `1/eta` from
 //! inside, where `wo.z < 0`), the generalized half vector is `m = ±(wo + wi)` for reflection and
@@ -21,7 +22,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::microfacet::Ggx;
+use super::microfacet::Microfacet;
 use super::{BsdfSample, Transport, fresnel};
 use crate::Rgb;
 use crate::optics::reflect;
@@ -35,7 +36,7 @@ pub(super) struct RoughDielectric {
     eta: f32,
     specular: Rgb,
     transmittance: Rgb,
-    ggx: Ggx,
+    facets: Microfacet,
 }
 
 /// The generalized half vector of a pair of directions and what eval and pdf share.
@@ -51,12 +52,12 @@ struct Half {
 }
 
 impl RoughDielectric {
-    pub fn new(eta: f32, specular: Rgb, transmittance: Rgb, alpha: f32) -> Self {
+    pub fn new(eta: f32, specular: Rgb, transmittance: Rgb, microfacet: Microfacet) -> Self {
         Self {
             eta: fresnel::sane_eta(eta),
             specular,
             transmittance,
-            ggx: Ggx::new(alpha),
+            facets: microfacet,
         }
     }
 
@@ -106,7 +107,7 @@ impl RoughDielectric {
         let Some(h) = self.half(wo, wi) else {
             return Rgb::BLACK;
         };
-        let g = self.ggx;
+        let g = self.facets;
         let cos_om = wo.dot(h.m);
         let f = fresnel::dielectric(cos_om, self.eta).r;
         let dg = g.d(h.m) * g.g1_over_cos(wo, h.m) * g.g1(wi, h.m);
@@ -128,7 +129,7 @@ impl RoughDielectric {
         let Some(h) = self.half(wo, wi) else {
             return 0.0;
         };
-        let visible = self.ggx.visible_pdf(Self::viewer(wo), h.m);
+        let visible = self.facets.visible_pdf(Self::viewer(wo), h.m);
         let f = fresnel::dielectric(wo.dot(h.m), self.eta).r;
         let cos_im = wi.dot(h.m).abs();
         if h.reflect {
@@ -153,8 +154,8 @@ impl RoughDielectric {
             });
         }
         let v = Self::viewer(wo);
-        let m = self.ggx.sample_visible(v, u);
-        let visible = self.ggx.visible_pdf(v, m);
+        let m = self.facets.sample_visible(v, u);
+        let visible = self.facets.visible_pdf(v, m);
         let cos_om = wo.dot(m);
         if visible <= 0.0 || cos_om * wo.z <= 0.0 {
             return None;
@@ -168,7 +169,7 @@ impl RoughDielectric {
             }
             return Some(BsdfSample {
                 wi,
-                weight: self.specular * self.ggx.g1(wi, m),
+                weight: self.specular * self.facets.g1(wi, m),
                 pdf: visible * f.r / (4.0 * wi.dot(m).abs()),
                 delta: false,
             });
@@ -185,7 +186,7 @@ impl RoughDielectric {
         };
         Some(BsdfSample {
             wi,
-            weight: self.transmittance * (self.ggx.g1(wi, m) * scale),
+            weight: self.transmittance * (self.facets.g1(wi, m) * scale),
             pdf: visible * (1.0 - f.r) * f.eta_it * f.eta_it * cos_im.abs() / (denom * denom),
             delta: false,
         })
@@ -197,7 +198,7 @@ mod tests {
     use super::*;
 
     fn glass(alpha: f32) -> RoughDielectric {
-        RoughDielectric::new(1.5, Rgb::WHITE, Rgb::WHITE, alpha)
+        RoughDielectric::new(1.5, Rgb::WHITE, Rgb::WHITE, Microfacet::ggx(alpha))
     }
 
     #[test]
@@ -256,7 +257,7 @@ mod tests {
 
     #[test]
     fn index_matched_rough_glass_is_a_window() {
-        let b = RoughDielectric::new(1.0, Rgb::WHITE, Rgb::WHITE, 0.5);
+        let b = RoughDielectric::new(1.0, Rgb::WHITE, Rgb::WHITE, Microfacet::ggx(0.5));
         let wo = Vec3::new(0.6, 0.0, 0.8);
         let s = b
             .sample(wo, 0.3, Vec2::new(0.2, 0.7), Transport::Radiance)

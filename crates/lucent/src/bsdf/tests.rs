@@ -5,8 +5,8 @@
 use glam::{Vec2, Vec3};
 
 use super::chi2::{self, Rng};
-use super::microfacet::Ggx;
-use super::{Bsdf, BsdfSample, Transport};
+use super::microfacet::{Distribution, Microfacet};
+use super::{Bsdf, BsdfSample, RoughCoat, Transport};
 use crate::Rgb;
 
 const ALPHAS: [f32; 4] = [0.05, 0.2, 0.6, 1.0];
@@ -21,6 +21,42 @@ fn at(theta: f32, inside: bool) -> Vec3 {
     let (t, phi) = (theta.to_radians(), 0.7f32);
     let z = if inside { -t.cos() } else { t.cos() };
     Vec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), z)
+}
+
+/// The microfacet distributions the rough variants are tested with: GGX and Beckmann at each
+/// roughness of `alphas`, and both anisotropic, rougher along one axis and then the other.
+fn facets(alphas: &[f32]) -> Vec<Microfacet> {
+    let mut v = Vec::new();
+    for kind in [Distribution::Ggx, Distribution::Beckmann] {
+        for &alpha in alphas {
+            v.push(Microfacet::isotropic(kind, alpha));
+        }
+        v.push(Microfacet::new(kind, 0.05, 0.4));
+        v.push(Microfacet::new(kind, 0.5, 0.15));
+    }
+    v
+}
+
+/// A short name for a distribution.
+fn label(m: Microfacet) -> String {
+    let (u, v) = m.alphas();
+    let kind = match m.kind() {
+        Distribution::Ggx => "GGX",
+        Distribution::Beckmann => "Beckmann",
+    };
+    if u == v {
+        format!("{kind} α {u}")
+    } else {
+        format!("{kind} α {u}×{v}")
+    }
+}
+
+/// A rough coat for the tests, kept for the whole run (its tables are integrated once).
+fn coat(kind: Distribution, alpha: f32, eta: f32) -> &'static RoughCoat {
+    Box::leak(Box::new(RoughCoat::new(
+        Microfacet::isotropic(kind, alpha),
+        eta,
+    )))
 }
 
 fn draw(b: &Bsdf, wo: Vec3, rng: &mut Rng, mode: Transport) -> Option<BsdfSample> {
@@ -45,7 +81,7 @@ struct Case {
 
 /// The continuous part of a BSDF: delta samples (and `None`) go to the harness's "other" cell,
 /// whose expected share is `1 − ∫ pdf`.
-fn bsdf_case(family: &'static str, name: String, b: Bsdf, wo: Vec3) -> Case {
+fn bsdf_case(family: &'static str, name: String, b: Bsdf<'static>, wo: Vec3) -> Case {
     Case {
         family,
         name,
@@ -61,13 +97,12 @@ fn bsdf_case(family: &'static str, name: String, b: Bsdf, wo: Vec3) -> Case {
 /// Every χ² test, in one table so that the Šidák correction counts them all.
 fn cases() -> Vec<Case> {
     let mut v = Vec::new();
-    for alpha in ALPHAS {
+    for g in facets(&ALPHAS) {
         for theta in THETAS {
-            let g = Ggx::new(alpha);
             let wo = at(theta, false);
             v.push(Case {
                 family: "visible normals",
-                name: format!("GGX visible normals α {alpha} θo {theta}°"),
+                name: format!("{} visible normals θo {theta}°", label(g)),
                 sample: Box::new(move |rng| {
                     let u = Vec2::new(rng.f32(), rng.f32());
                     Some(g.sample_visible(wo, u))
@@ -87,29 +122,32 @@ fn cases() -> Vec<Case> {
             at(theta, false),
         ));
     }
-    for alpha in ALPHAS {
+    for microfacet in facets(&ALPHAS) {
         for theta in THETAS {
             let b = Bsdf::RoughConductor {
                 eta: Rgb::new(0.2, 0.9, 1.1),
                 k: Rgb::new(3.9, 2.4, 2.2),
                 specular: Rgb::WHITE,
-                alpha,
+                microfacet,
             };
-            let name = format!("RoughConductor α {alpha} θo {theta}°");
+            let name = format!("RoughConductor {} θo {theta}°", label(microfacet));
             v.push(bsdf_case("rough conductor", name, b, at(theta, false)));
         }
     }
     for inside in [false, true] {
-        for alpha in ALPHAS {
+        for microfacet in facets(&[0.05, 0.2, 0.6]) {
             for theta in THETAS {
                 let b = Bsdf::RoughDielectric {
                     eta: 1.5,
                     specular: Rgb::WHITE,
                     transmittance: Rgb::WHITE,
-                    alpha,
+                    microfacet,
                 };
                 let side = if inside { "inside" } else { "outside" };
-                let name = format!("RoughDielectric α {alpha} θo {theta}° from {side}");
+                let name = format!(
+                    "RoughDielectric {} θo {theta}° from {side}",
+                    label(microfacet)
+                );
                 let family = if inside {
                     "rough dielectric inside"
                 } else {
@@ -119,16 +157,31 @@ fn cases() -> Vec<Case> {
             }
         }
     }
-    for alpha in [0.0].into_iter().chain(ALPHAS) {
+    for nonlinear in [false, true] {
         for theta in THETAS {
             let b = Bsdf::Plastic {
                 diffuse: Rgb::new(0.7, 0.3, 0.1),
                 eta: 1.5,
                 specular: Rgb::WHITE,
-                alpha,
+                nonlinear,
             };
-            let name = format!("Plastic α {alpha} θo {theta}°");
+            let name = format!("Plastic nonlinear {nonlinear} θo {theta}°");
             v.push(bsdf_case("plastic", name, b, at(theta, false)));
+        }
+    }
+    for kind in [Distribution::Ggx, Distribution::Beckmann] {
+        for alpha in [0.05, 0.2, 0.6] {
+            let coat = coat(kind, alpha, 1.5);
+            for theta in THETAS {
+                let b = Bsdf::RoughPlastic {
+                    diffuse: Rgb::new(0.7, 0.3, 0.1),
+                    specular: Rgb::WHITE,
+                    nonlinear: false,
+                    coat,
+                };
+                let name = format!("RoughPlastic {kind:?} α {alpha} θo {theta}°");
+                v.push(bsdf_case("rough plastic", name, b, at(theta, false)));
+            }
         }
     }
     for theta in THETAS {
@@ -205,6 +258,11 @@ fn chi2_plastic() {
 }
 
 #[test]
+fn chi2_rough_plastic() {
+    chi2_family("rough plastic");
+}
+
+#[test]
 fn chi2_classic() {
     chi2_family("classic");
 }
@@ -219,7 +277,7 @@ fn chi2_rejects_a_slightly_wrong_pdf() {
         eta: Rgb::gray(1.5),
         k: Rgb::gray(3.0),
         specular: Rgb::WHITE,
-        alpha,
+        microfacet: Microfacet::ggx(alpha),
     };
     let (sampled, claimed) = (rough(0.2), rough(0.21));
     let sample = move |rng: &mut Rng| draw(&sampled, wo, rng, Transport::Radiance).map(|s| s.wi);
@@ -232,7 +290,7 @@ fn chi2_rejects_a_slightly_wrong_pdf() {
         eta: 1.5,
         specular: Rgb::WHITE,
         transmittance: Rgb::WHITE,
-        alpha: 0.3,
+        microfacet: Microfacet::ggx(0.3),
     };
     let wo = at(60.0, false);
     let f = super::fresnel::dielectric(wo.z, 1.5).r;
@@ -265,7 +323,7 @@ fn chi2_rejects_a_slightly_wrong_pdf() {
 // 2. Sample weights against eval/pdf.
 
 /// Every variant, with coloured parameters, including Dirac-only and mixed ones.
-fn variants() -> Vec<(String, Bsdf)> {
+fn variants() -> Vec<(String, Bsdf<'static>)> {
     let mut v = vec![
         (
             "Lambert".to_string(),
@@ -290,36 +348,55 @@ fn variants() -> Vec<(String, Bsdf)> {
             },
         ),
     ];
-    for alpha in [0.05, 0.3, 1.0] {
+    v.push((
+        "ThinDielectric".into(),
+        Bsdf::ThinDielectric {
+            eta: 1.5,
+            specular: Rgb::new(1.0, 0.9, 0.8),
+            transmittance: Rgb::new(0.7, 0.9, 1.0),
+        },
+    ));
+    for microfacet in facets(&[0.05, 0.3, 1.0]) {
         v.push((
-            format!("RoughConductor α {alpha}"),
+            format!("RoughConductor {}", label(microfacet)),
             Bsdf::RoughConductor {
                 eta: Rgb::new(0.2, 0.9, 1.1),
                 k: Rgb::new(3.9, 2.4, 2.2),
                 specular: Rgb::new(1.0, 0.9, 0.8),
-                alpha,
+                microfacet,
             },
         ));
         v.push((
-            format!("RoughDielectric α {alpha}"),
+            format!("RoughDielectric {}", label(microfacet)),
             Bsdf::RoughDielectric {
                 eta: 1.33,
                 specular: Rgb::new(1.0, 0.9, 0.8),
                 transmittance: Rgb::new(0.7, 0.9, 1.0),
-                alpha,
+                microfacet,
             },
         ));
     }
-    for alpha in [0.0, 0.1, 0.5] {
+    for nonlinear in [false, true] {
         v.push((
-            format!("Plastic α {alpha}"),
+            format!("Plastic nonlinear {nonlinear}"),
             Bsdf::Plastic {
                 diffuse: Rgb::new(0.7, 0.3, 0.1),
                 eta: 1.5,
                 specular: Rgb::new(1.0, 0.9, 0.8),
-                alpha,
+                nonlinear,
             },
         ));
+        for (kind, alpha) in [(Distribution::Ggx, 0.1), (Distribution::Beckmann, 0.5)] {
+            v.push((
+                format!("RoughPlastic {kind:?} α {alpha} nonlinear {nonlinear}"),
+                Bsdf::RoughPlastic {
+                    diffuse: Rgb::new(0.7, 0.3, 0.1),
+                    specular: Rgb::new(1.0, 0.9, 0.8),
+                    nonlinear,
+                    coat: coat(kind, alpha, 1.5),
+                },
+            ));
+        }
     }
     for kt in [Rgb::BLACK, Rgb::gray(0.3)] {
         v.push((
@@ -419,7 +496,7 @@ fn albedo(b: &Bsdf, wo: Vec3, n: usize, seed: u64) -> ([f64; 3], [f64; 3]) {
 
 /// Every variant with white (physically plausible) parameters and the albedo it may not
 /// exceed, beyond noise.
-fn white_variants() -> Vec<(String, Bsdf, Rgb)> {
+fn white_variants() -> Vec<(String, Bsdf<'static>, Rgb)> {
     let one = Rgb::WHITE;
     let mut v = vec![
         ("Lambert".to_string(), Bsdf::Lambert { albedo: one }, one),
@@ -442,41 +519,64 @@ fn white_variants() -> Vec<(String, Bsdf, Rgb)> {
             one,
         ),
     ];
-    for alpha in ALPHAS {
+    v.push((
+        "ThinDielectric".into(),
+        Bsdf::ThinDielectric {
+            eta: 1.5,
+            specular: one,
+            transmittance: one,
+        },
+        one,
+    ));
+    for microfacet in facets(&ALPHAS) {
         v.push((
-            format!("RoughConductor α {alpha}"),
+            format!("RoughConductor {}", label(microfacet)),
             Bsdf::RoughConductor {
                 eta: Rgb::new(0.2, 0.9, 1.1),
                 k: Rgb::new(3.9, 2.4, 2.2),
                 specular: one,
-                alpha,
+                microfacet,
             },
             one,
         ));
         v.push((
-            format!("RoughDielectric α {alpha}"),
+            format!("RoughDielectric {}", label(microfacet)),
             Bsdf::RoughDielectric {
                 eta: 1.5,
                 specular: one,
                 transmittance: one,
-                alpha,
+                microfacet,
             },
             one,
         ));
     }
-    for alpha in [0.0].into_iter().chain(ALPHAS) {
-        // 0.2% above 1: the fit of the coat's internal diffuse reflectance F_dr (Mitsuba's,
-        // kept so that images match) is that far from its integral; see bsdf/plastic.rs.
-        v.push((
-            format!("Plastic α {alpha}"),
-            Bsdf::Plastic {
-                diffuse: one,
-                eta: 1.5,
-                specular: one,
-                alpha,
-            },
-            Rgb::gray(1.002),
-        ));
+    // 0.2% above 1: the fit of the coat's internal diffuse reflectance F_dr (Mitsuba's,
+    // kept so that images match) is that far from its integral; see bsdf/plastic.rs.
+    v.push((
+        "Plastic".into(),
+        Bsdf::Plastic {
+            diffuse: one,
+            eta: 1.5,
+            specular: one,
+            nonlinear: false,
+        },
+        Rgb::gray(1.002),
+    ));
+    for kind in [Distribution::Ggx, Distribution::Beckmann] {
+        for alpha in ALPHAS {
+            // The rough coat's R_int is Mitsuba's coarse 64-point estimate: a white base
+            // may return up to a percent more than it receives, as in Mitsuba.
+            v.push((
+                format!("RoughPlastic {kind:?} α {alpha}"),
+                Bsdf::RoughPlastic {
+                    diffuse: one,
+                    specular: one,
+                    nonlinear: false,
+                    coat: coat(kind, alpha, 1.5),
+                },
+                Rgb::gray(1.01),
+            ));
+        }
     }
     let (kd, ks, kr, kt) = (
         Rgb::new(0.5, 0.2, 0.1),
@@ -552,7 +652,7 @@ fn white_rough_glass_loses_only_the_multiple_scattering() {
         eta: 1.5,
         specular: Rgb::WHITE,
         transmittance: Rgb::WHITE,
-        alpha: 0.2,
+        microfacet: Microfacet::ggx(0.2),
     };
     let cases = [
         (false, 0.0, 0.99),
@@ -618,20 +718,27 @@ fn reflection_is_reciprocal() {
 
 #[test]
 fn degenerate_input_gives_finite_values() {
-    let mut bsdfs: Vec<Bsdf> = variants().into_iter().map(|(_, b)| b).collect();
+    let mut bsdfs: Vec<Bsdf<'static>> = variants().into_iter().map(|(_, b)| b).collect();
     for alpha in [0.0, 1e-9, 1e-4, 1.0, 50.0, 1e9, f32::NAN] {
         for eta in [1.0, 1.0 + 1e-6, 0.0, -1.0, 1e-6, 1e6, f32::NAN] {
-            bsdfs.push(Bsdf::RoughDielectric {
-                eta,
-                specular: Rgb::WHITE,
-                transmittance: Rgb::WHITE,
-                alpha,
-            });
+            for kind in [Distribution::Ggx, Distribution::Beckmann] {
+                bsdfs.push(Bsdf::RoughDielectric {
+                    eta,
+                    specular: Rgb::WHITE,
+                    transmittance: Rgb::WHITE,
+                    microfacet: Microfacet::new(kind, alpha, 0.3),
+                });
+            }
             bsdfs.push(Bsdf::Plastic {
                 diffuse: Rgb::WHITE,
                 eta,
                 specular: Rgb::WHITE,
-                alpha,
+                nonlinear: alpha.is_nan(),
+            });
+            bsdfs.push(Bsdf::ThinDielectric {
+                eta,
+                specular: Rgb::WHITE,
+                transmittance: Rgb::WHITE,
             });
             bsdfs.push(Bsdf::Dielectric {
                 eta,
@@ -639,12 +746,14 @@ fn degenerate_input_gives_finite_values() {
                 transmittance: Rgb::WHITE,
             });
         }
-        bsdfs.push(Bsdf::RoughConductor {
-            eta: Rgb::BLACK,
-            k: Rgb::BLACK,
-            specular: Rgb::WHITE,
-            alpha,
-        });
+        for kind in [Distribution::Ggx, Distribution::Beckmann] {
+            bsdfs.push(Bsdf::RoughConductor {
+                eta: Rgb::BLACK,
+                k: Rgb::BLACK,
+                specular: Rgb::WHITE,
+                microfacet: Microfacet::new(kind, alpha, alpha),
+            });
+        }
         bsdfs.push(Bsdf::Classic {
             kd: Rgb::WHITE,
             ks: Rgb::WHITE,
@@ -660,7 +769,7 @@ fn degenerate_input_gives_finite_values() {
             diffuse: Rgb::BLACK,
             eta: 1.0,
             specular: Rgb::BLACK,
-            alpha: 0.0,
+            nonlinear: false,
         },
         Bsdf::Classic {
             kd: Rgb::BLACK,

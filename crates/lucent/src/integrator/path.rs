@@ -29,7 +29,7 @@
 //! lights the scene; the ambient term of the classic model is not used.
 
 use super::RayStats;
-use super::vertex::Vertex;
+use super::vertex::{Vertex, footprint_of_sample};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::sampling::sobol::Sampler;
@@ -106,8 +106,17 @@ impl PathTracer {
             let u_rr = sampler.next_1d();
 
             let hit = match beam {
-                Some(beam) if depth == 0 => scene.intersect_in(beam, &ray, &mut stats.traversal),
-                _ => scene.intersect_from(&ray, from, &mut stats.traversal),
+                Some(beam) if depth == 0 => scene
+                    .intersect_in(beam, &ray, &mut stats.traversal)
+                    .and_then(|h| {
+                        if scene.stops(&h, &ray) {
+                            Some(h)
+                        } else {
+                            let (next, leaving) = crate::spawn::spawn_ray(&h, ray.dir);
+                            scene.intersect_opaque(&next, Some(leaving), &mut stats.traversal)
+                        }
+                    }),
+                _ => scene.intersect_opaque(&ray, from, &mut stats.traversal),
             };
             let Some(hit) = hit else {
                 let le = scene.background_along(ray.dir);
@@ -119,8 +128,9 @@ impl PathTracer {
                 }
                 break;
             };
+            let footprint = footprint_of_sample(sampler.index());
             let m = &scene.materials[hit.material as usize];
-            if !m.ke.is_black() && hit.normal.dot(ray.dir) < 0.0 {
+            if m.emits() && hit.normal.dot(ray.dir) < 0.0 {
                 let w = match (last, scene.emitters.area_light_of(hit.object)) {
                     (Some((p, pdf)), Some(light)) => power_heuristic(
                         pdf,
@@ -128,7 +138,11 @@ impl PathTracer {
                     ),
                     _ => 1.0,
                 };
-                l += beta * m.ke * w;
+                let le = match m.emission_map {
+                    None => m.ke,
+                    Some(_) => m.emission(&scene.tex_coords(m, &hit, footprint), &scene.images),
+                };
+                l += beta * le * w;
             }
 
             // The last bounce's ray was traced only for the light it finds (so that both
@@ -136,7 +150,7 @@ impl PathTracer {
             if depth > self.max_depth {
                 break;
             }
-            let v = Vertex::new(scene, ray.dir, hit);
+            let v = Vertex::new(scene, ray.dir, hit, footprint);
             if !v.bsdf.is_delta() {
                 l += beta * v.direct_light(scene, u_light, true, stats);
             }

@@ -25,7 +25,7 @@
 //! filled in pixel order — so the image does not depend on the number of threads.
 
 use super::RayStats;
-use super::vertex::Vertex;
+use super::vertex::{Vertex, footprint_of_sample};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::film::Film;
@@ -80,8 +80,8 @@ struct PixelState {
 }
 
 /// The visible point of a pixel in the current iteration.
-struct VisiblePoint {
-    vertex: Vertex,
+struct VisiblePoint<'a> {
+    vertex: Vertex<'a>,
     /// Throughput from the camera.
     beta: Rgb,
 }
@@ -135,7 +135,7 @@ pub fn render_sppm(
         let k = iterations;
         // 1. Camera pass: a visible point and the direct light per pixel. (A stop request
         // ends the render between iterations: one takes well under a second.)
-        let camera: Vec<(Option<VisiblePoint>, Rgb, RayStats)> = (0..pixels)
+        let camera: Vec<(Option<VisiblePoint<'_>>, Rgb, RayStats)> = (0..pixels)
             .into_par_iter()
             .map(|i| camera_path(scene, settings.seed, sppm, i, k, width))
             .collect();
@@ -237,14 +237,14 @@ pub fn render_sppm(
 
 /// The camera path of pixel `i` in iteration `k`: its visible point (if it reaches one) and
 /// the light it gathers directly.
-fn camera_path(
-    scene: &Scene,
+fn camera_path<'a>(
+    scene: &'a Scene,
     seed: u64,
     sppm: &Sppm,
     i: usize,
     k: u32,
     width: u32,
-) -> (Option<VisiblePoint>, Rgb, RayStats) {
+) -> (Option<VisiblePoint<'a>>, Rgb, RayStats) {
     let mut stats = RayStats::default();
     let mut sampler = Sampler::new(seed, i as u64, k);
     let (x, y) = ((i % width as usize) as f32, (i / width as usize) as f32);
@@ -258,20 +258,21 @@ fn camera_path(
     for depth in 0..=sppm.max_depth {
         let u_light = (sampler.next_1d(), sampler.next_2d());
         let u_bsdf = (sampler.next_1d(), sampler.next_2d());
-        let Some(hit) = scene.intersect_from(&ray, from, &mut stats.traversal) else {
+        let Some(hit) = scene.intersect_opaque(&ray, from, &mut stats.traversal) else {
             direct += beta * scene.background_along(ray.dir);
             break;
         };
+        let footprint = footprint_of_sample(sampler.index());
         let m = &scene.materials[hit.material as usize];
-        if !m.ke.is_black() && hit.normal.dot(ray.dir) < 0.0 {
-            direct += beta * m.ke;
+        if m.emits() && hit.normal.dot(ray.dir) < 0.0 {
+            direct += beta * m.emission(&scene.tex_coords(m, &hit, footprint), &scene.images);
         }
-        let v = Vertex::new(scene, ray.dir, hit);
+        let v = Vertex::new(scene, ray.dir, hit, footprint);
         // A visible point gathers the BSDF's non-delta lobes; its Dirac lobes (mirrors, glass,
         // a smooth coat) are followed. A mixture picks one by the BSDF's own sampling: the
         // point then stands for its share, 1 − P(delta).
         let p_delta = v.bsdf.delta_share(v.wo);
-        let stop = |beta: Rgb, v: Vertex, direct: &mut Rgb, stats: &mut RayStats| {
+        let stop = |beta: Rgb, v: Vertex<'a>, direct: &mut Rgb, stats: &mut RayStats| {
             *direct += beta * v.direct_light(scene, u_light, false, stats);
             Some(VisiblePoint { vertex: v, beta })
         };
@@ -306,7 +307,7 @@ fn trace_photon(
     p: usize,
     k: u32,
     grid: &Grid,
-    points: &[Option<VisiblePoint>],
+    points: &[Option<VisiblePoint<'_>>],
     state: &[PixelState],
     deposits: &mut Vec<(u32, Rgb)>,
     stats: &mut RayStats,
@@ -330,10 +331,11 @@ fn trace_photon(
         let u_bsdf = (sampler.next_1d(), sampler.next_2d());
         let u_rr = sampler.next_1d();
         stats.photons += 1;
-        let Some(hit) = scene.intersect_from(&ray, from, &mut stats.traversal) else {
+        let Some(hit) = scene.intersect_opaque(&ray, from, &mut stats.traversal) else {
             return;
         };
-        let v = Vertex::new(scene, ray.dir, hit);
+        // Photons have no pixel: their textures are looked up at a point.
+        let v = Vertex::new(scene, ray.dir, hit, 0.0);
         if depth > 0 && !v.bsdf.is_delta() {
             grid.gather(v.hit.point, |i| {
                 let Some(vp) = &points[i as usize] else {
@@ -377,7 +379,7 @@ struct Grid {
 }
 
 impl Grid {
-    fn new(points: &[Option<VisiblePoint>], state: &[PixelState]) -> Self {
+    fn new(points: &[Option<VisiblePoint<'_>>], state: &[PixelState]) -> Self {
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut r_max = 0.0f32;
         let mut n = 0usize;

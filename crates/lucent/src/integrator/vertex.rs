@@ -1,38 +1,32 @@
 //! A scattering vertex of a path, as the physically based integrators (the path tracer and the
-//! photon mapper) see it: the BSDF at a hit in its shading frame, direct light by light
-//! sampling, and the next direction by BSDF sampling — free functions they share.
+//! photon mapper) see it: the material resolved at a hit ([`Scattering`]), direct light by
+//! light sampling, and the next direction by BSDF sampling — free functions they share.
 
 use super::RayStats;
 use super::path::power_heuristic;
 use crate::Rgb;
-use crate::bsdf::{Bsdf, BsdfSample, Frame, Transport};
+use crate::bsdf::Transport;
+use crate::material::{Geometry, Scattering, ScatteringSample};
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
 use crate::spawn::{Leaving, spawn_ray};
 use glam::{Vec2, Vec3};
 use lucent_accel::Ray;
 
-/// The BSDF at a hit, turned to the side the ray arrived on.
-pub struct Vertex {
+/// The material at a hit, resolved for the ray that arrived.
+pub struct Vertex<'a> {
     /// The surface.
     pub hit: SurfaceHit,
-    /// Its BSDF there (textures evaluated).
-    pub bsdf: Bsdf,
-    /// The shading frame: z is the shading normal (flipped to the ray's side for two-sided
-    /// reflectors).
-    pub frame: Frame,
-    /// The geometric normal, flipped as the frame is.
-    pub ng: Vec3,
-    /// The direction back along the arriving ray, in the shading frame.
+    /// Its scattering there (textures evaluated, frames set).
+    pub bsdf: Scattering<'a>,
+    /// The unit direction back along the arriving ray (world space).
     pub wo: Vec3,
-    /// Whether `wo` is on the side `ng` points to.
-    wo_side: bool,
 }
 
 /// Where a sampled direction leads.
 pub struct Bounce {
-    /// The BSDF sample (direction in the shading frame, weight, pdf, delta).
-    pub sample: BsdfSample,
+    /// The sample (world direction, weight, pdf, delta).
+    pub sample: ScatteringSample,
     /// The ray leaving the surface along it.
     pub ray: Ray,
     /// The surface left, for the self-intersection policy.
@@ -41,35 +35,30 @@ pub struct Bounce {
     pub reflected: bool,
 }
 
-impl Vertex {
-    /// The vertex where `ray` (travelling along `dir`) hit `hit`.
-    pub fn new(scene: &Scene, dir: Vec3, hit: SurfaceHit) -> Self {
+/// The texture footprint of sample `index` of a pixel: the camera's one-pixel footprint
+/// narrowed as samples accumulate, `max(1/8, 1/√(index + 1))` (pbrt-v4 narrows it by the
+/// samples per pixel; by the index, every sample count and time limit gets the same samples).
+pub fn footprint_of_sample(index: u32) -> f32 {
+    (1.0 / ((index as f32) + 1.0).sqrt()).max(0.125)
+}
+
+impl<'a> Vertex<'a> {
+    /// The vertex where `ray` (travelling along `dir`) hit `hit`, its textures filtered over
+    /// `footprint` times the camera's pixel footprint.
+    pub fn new(scene: &'a Scene, dir: Vec3, hit: SurfaceHit, footprint: f32) -> Self {
         let m = &scene.materials[hit.material as usize];
-        let bsdf = m.bsdf(scene.diffuse(m, &hit));
-        // A two-sided reflector scatters on whichever side the ray arrives.
-        let back = hit.normal.dot(dir) > 0.0;
-        let flip = back && m.two_sided && !bsdf.transmits();
-        let (n, ng) = if flip {
-            (-hit.shading_normal, -hit.normal)
-        } else {
-            (hit.shading_normal, hit.normal)
+        let at = scene.tex_coords(m, &hit, footprint);
+        let geometry = Geometry {
+            n: hit.shading_normal,
+            dpdu: hit.dpdu,
+            dpdv: hit.dpdv,
         };
-        let frame = Frame::from_normal(n);
-        let wo = frame.to_local(-dir);
+        let bsdf = Scattering::new(m, geometry, hit.normal, &at, &scene.images, dir);
         Self {
-            wo_side: (-dir).dot(ng) > 0.0,
             hit,
             bsdf,
-            frame,
-            ng,
-            wo,
+            wo: -dir,
         }
-    }
-
-    /// Whether the unit world direction `w` (away from the surface) is on the side the shading
-    /// frame puts it: directions that smooth normals would leak through are refused.
-    fn consistent(&self, w: Vec3, local: Vec3) -> bool {
-        (w.dot(self.ng) > 0.0) == (local.z > 0.0)
     }
 
     /// Direct light by one light sample: `f·Le / p`, weighted by the power heuristic against
@@ -88,11 +77,7 @@ impl Vertex {
         else {
             return Rgb::BLACK;
         };
-        let wi = self.frame.to_local(s.wi);
-        if !self.consistent(s.wi, wi) {
-            return Rgb::BLACK;
-        }
-        let f = self.bsdf.eval(self.wo, wi, Transport::Radiance);
+        let f = self.bsdf.eval(self.wo, s.wi, Transport::Radiance);
         if f.is_black() {
             return Rgb::BLACK;
         }
@@ -112,13 +97,13 @@ impl Vertex {
         } else {
             f32::INFINITY
         };
-        if scene.occlusion(&ray, t_max, Some(from), &mut stats.traversal, |_, _| true) {
+        if scene.blocked(&ray, t_max, Some(from), &mut stats.traversal) {
             return Rgb::BLACK;
         }
         let w = if s.delta || !mis {
             1.0
         } else {
-            power_heuristic(s.pdf, self.bsdf.pdf(self.wo, wi))
+            power_heuristic(s.pdf, self.bsdf.pdf(self.wo, s.wi))
         };
         f * le * (w / s.pdf)
     }
@@ -133,14 +118,11 @@ impl Vertex {
         stats: &mut RayStats,
     ) -> Option<Bounce> {
         let s = self.bsdf.sample(self.wo, u_lobe, u, mode)?;
-        let wi = self.frame.to_world(s.wi);
-        let reflected = (s.wi.z > 0.0) == (self.wo.z > 0.0);
-        let same_side = (wi.dot(self.ng) > 0.0) == self.wo_side;
-        if same_side != reflected || s.weight.is_black() {
+        if s.weight.is_black() {
             return None;
         }
-        let (ray, from) = spawn_ray(&self.hit, wi.normalize());
-        if reflected {
+        let (ray, from) = spawn_ray(&self.hit, s.wi);
+        if s.reflected {
             stats.reflected += 1;
         } else {
             stats.refracted += 1;
@@ -149,7 +131,7 @@ impl Vertex {
             sample: s,
             ray,
             from,
-            reflected,
+            reflected: s.reflected,
         })
     }
 
@@ -157,11 +139,17 @@ impl Vertex {
     /// (a photon's reverse direction), zero where it would leak through the surface. A photon's
     /// flux per area is already irradiance, projected on the surface: its cosine is counted.
     pub fn bsdf_value(&self, wi: Vec3, mode: Transport) -> Rgb {
-        let local = self.frame.to_local(wi);
-        let cos = local.z.abs();
-        if !self.consistent(wi, local) || cos <= 0.0 {
-            return Rgb::BLACK;
+        let f = self.bsdf.eval(self.wo, wi, mode);
+        if f.is_black() {
+            return f;
         }
-        self.bsdf.eval(self.wo, local, mode) / cos
+        // Each part's cosine is its own frame's; divide by the shading cosine of the first,
+        // which the others share unless a blend mixes normal maps.
+        let cos = self
+            .bsdf
+            .parts()
+            .first()
+            .map_or(0.0, |p| p.frame.n.dot(wi).abs());
+        if cos <= 0.0 { Rgb::BLACK } else { f / cos }
     }
 }

@@ -153,6 +153,11 @@ impl Sampler {
         }
     }
 
+    /// The sample's index within its pixel.
+    pub fn index(&self) -> u32 {
+        self.index
+    }
+
     /// How many dimensions have been drawn so far (one per value).
     pub fn dimension(&self) -> u32 {
         self.dimension

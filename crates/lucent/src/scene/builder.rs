@@ -179,6 +179,11 @@ impl SceneBuilder {
         self.images.len() as u32 - 1
     }
 
+    /// The images added so far, by index.
+    pub fn images(&self) -> &[ImageTexture] {
+        &self.images
+    }
+
     /// Stored image `id` (from [`SceneBuilder::image`]).
     pub fn stored_image(&self, id: u32) -> Option<&ImageTexture> {
         self.images.get(id as usize)
@@ -348,11 +353,15 @@ impl SceneBuilder {
                 return Err(SceneError::TooManyPrimitives(mesh.triangles.len()));
             }
         }
-        let textures = self.materials.iter().filter_map(|m| match m.kd {
-            crate::texture::Texture::Image(i) => Some(i),
-            _ => None,
-        });
-        for image in textures.chain(self.environment) {
+        let mut textures = Vec::new();
+        for m in &self.materials {
+            m.kd.images(&mut textures);
+            m.surface.visit_textures(&mut |t| t.images(&mut textures));
+            for t in m.emission_map.iter().chain(m.opacity.iter()) {
+                t.images(&mut textures);
+            }
+        }
+        for image in textures.into_iter().chain(self.environment) {
             if image as usize >= self.images.len() {
                 let count = self.images.len();
                 return Err(SceneError::NoSuchImage { image, count });
@@ -533,7 +542,9 @@ impl SceneBuilder {
                 kind,
             })
         });
+        let has_cutouts = self.materials.iter().any(|m| m.opacity.is_some());
         let mut scene = Scene {
+            has_cutouts,
             camera: self.camera,
             background: self.background,
             ambient: self.ambient,
@@ -645,9 +656,10 @@ fn emitters(
     objects: u32,
     bounds: Aabb,
 ) -> Emitters {
+    // A textured emission is not sampled as a light: it is found by the rays that hit it.
     let emits = |tag: &ObjectTag| {
-        let ke = materials[tag.material as usize].ke;
-        (!ke.is_black()).then_some(ke)
+        let m = &materials[tag.material as usize];
+        (!m.ke.is_black() && m.emission_map.is_none()).then_some(m.ke)
     };
     let mut area = AreaLights::default();
     for (s, tag) in spheres {

@@ -18,6 +18,7 @@
 mod animation;
 mod beam;
 mod builder;
+mod cutout;
 mod packet;
 mod query;
 
@@ -30,7 +31,7 @@ use crate::light::{Emitters, Light};
 use crate::material::Material;
 use crate::shape::SurfaceHit;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, TriangleTest};
-use crate::texture::ImageTexture;
+use crate::texture::{ImageTexture, TexCoords};
 use animation::{Animation, Moving};
 use lucent_accel::{Aabb, AccelInfo, AccelKind, AnyAccelerator, WideTriangleBvh};
 use std::sync::Arc;
@@ -130,6 +131,24 @@ impl MeshAccel {
     }
 }
 
+/// The change of texture coordinates `(du, dv)` that moves a point by `dp` in the tangent
+/// plane spanned by `dpdu` and `dpdv`: the least-squares solution of `dpdu·du + dpdv·dv = dp`
+/// (pbrt's `ComputeDifferentials`), zero where the tangents are degenerate, clamped to ±10⁸.
+fn uv_step(dpdu: glam::Vec3, dpdv: glam::Vec3, dp: glam::Vec3) -> glam::Vec2 {
+    let (a00, a01, a11) = (dpdu.dot(dpdu), dpdu.dot(dpdv), dpdv.dot(dpdv));
+    let det = a00 * a11 - a01 * a01;
+    if !det.is_finite() || det.abs() <= 1e-30 {
+        return glam::Vec2::ZERO;
+    }
+    let (b0, b1) = (dpdu.dot(dp), dpdv.dot(dp));
+    let d = glam::Vec2::new(a11 * b0 - a01 * b1, a00 * b1 - a01 * b0) / det;
+    if d.is_finite() {
+        d.clamp(glam::Vec2::splat(-1e8), glam::Vec2::splat(1e8))
+    } else {
+        glam::Vec2::ZERO
+    }
+}
+
 /// A scene ready to render.
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -170,6 +189,9 @@ pub struct Scene {
     /// The lights as the path tracer samples them (area lights and the environment too),
     /// shared between clones.
     pub emitters: Arc<Emitters>,
+    /// Whether any material is partly cut away (`Material::opacity`): queries then look past
+    /// the surfaces a ray passes through ([`Scene::intersect_opaque`]).
+    has_cutouts: bool,
 }
 
 /// Counts of what a scene holds, for `lucent info` and statistics.
@@ -242,10 +264,35 @@ impl Scene {
         }
     }
 
-    /// The diffuse colour of `m` at `hit`: its texture there, times the mesh's vertex colour.
+    /// The diffuse colour of `m` at `hit`: its texture there (a point lookup), times the
+    /// mesh's vertex colour where the material takes it.
     #[inline]
     pub fn diffuse(&self, m: &Material, hit: &SurfaceHit) -> Rgb {
-        m.kd.eval(hit.texture_coords, || hit.uv(), &self.images) * hit.color
+        let at = self.tex_coords(m, hit, 0.0);
+        let kd = m.kd.eval(&at, &self.images);
+        if m.vertex_colors { kd * hit.color } else { kd }
+    }
+
+    /// Where `m`'s textures are looked up at `hit`: its texture coordinates (worked out only
+    /// when the material reads them) and their footprint, the camera's one-pixel footprint
+    /// ([`Camera::footprint`]) times `footprint` (0 for point lookups; pbrt-v4 narrows it to
+    /// `1/√spp`, at least 1/8, as samples accumulate).
+    pub fn tex_coords(&self, m: &Material, hit: &SurfaceHit, footprint: f32) -> TexCoords {
+        let mut at = TexCoords {
+            p: hit.texture_coords,
+            uv: glam::Vec2::ZERO,
+            duv: [glam::Vec2::ZERO; 2],
+            color: hit.color,
+        };
+        if !m.uses_uv() {
+            return at;
+        }
+        at.uv = hit.uv();
+        if footprint > 0.0 {
+            let dp = self.camera.footprint(hit.point, hit.normal);
+            at.duv = dp.map(|d| uv_step(hit.dpdu, hit.dpdv, d * footprint));
+        }
+        at
     }
 
     /// The bounding box of every bounded shape (infinite planes are left out).

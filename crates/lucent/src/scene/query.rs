@@ -387,6 +387,8 @@ impl Scene {
                 let point = p - plane.normal * plane.normal.dot(p - plane.point);
                 let coords = plane.surface_coords(point);
                 SurfaceHit {
+                    dpdu: plane.tangent,
+                    dpdv: plane.bitangent,
                     t,
                     point,
                     normal: plane.normal,
@@ -405,7 +407,10 @@ impl Scene {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let point = sphere.project_to_surface(ray.at(t));
                 let normal = sphere.normal_at(point);
+                let (dpdu, dpdv) = sphere.tangents(normal);
                 SurfaceHit {
+                    dpdu,
+                    dpdv,
                     t,
                     point,
                     normal,
@@ -452,13 +457,20 @@ impl Scene {
                         None => local_normal,
                     }
                 };
-                let uv = if mesh.uvs.is_empty() {
-                    Vec2::new(b1, b2)
+                let (uv, tangents) = if mesh.uvs.is_empty() {
+                    let [a, b, c] = object;
+                    (Vec2::new(b1, b2), (b - a, c - a))
                 } else {
-                    corners
+                    let corner_uvs = corners.map(|i| mesh.uvs[i]);
+                    let uv = corner_uvs
                         .iter()
                         .zip(hit.bary)
-                        .fold(Vec2::ZERO, |a, (&i, b)| a + b * mesh.uvs[i])
+                        .fold(Vec2::ZERO, |a, (&t, b)| a + b * t);
+                    let tangents = triangle::uv_tangents(object, corner_uvs).unwrap_or_else(|| {
+                        let (a, b) = local_normal.any_orthonormal_pair();
+                        (a, b)
+                    });
+                    (uv, tangents)
                 };
                 let color = if mesh.colors.is_empty() {
                     Rgb::WHITE
@@ -474,14 +486,18 @@ impl Scene {
                     }
                     _ => (here, here_error),
                 };
-                let (normal, shading_normal) = match instance.transform {
+                let (normal, shading_normal, dpdu, dpdv) = match instance.transform {
                     Some(t) => (
                         t.normal_to_world(local_normal),
                         t.normal_to_world(local_shading),
+                        t.vector_to_world(tangents.0),
+                        t.vector_to_world(tangents.1),
                     ),
-                    None => (local_normal, local_shading),
+                    None => (local_normal, local_shading, tangents.0, tangents.1),
                 };
                 SurfaceHit {
+                    dpdu,
+                    dpdv,
                     t: hit.t,
                     point,
                     normal,

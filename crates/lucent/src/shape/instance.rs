@@ -53,6 +53,12 @@ impl Transform {
         self.to_world.transform_point3(p)
     }
 
+    /// A direction (a tangent, a difference of points) from object to world space.
+    #[inline]
+    pub fn vector_to_world(&self, v: Vec3) -> Vec3 {
+        self.to_world.transform_vector3(v)
+    }
+
     /// A unit normal from object to world space (unit again). It keeps its side of the surface
     /// even under a mirroring transform, where the winding's normal would flip.
     #[inline]

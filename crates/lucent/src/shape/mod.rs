@@ -62,6 +62,12 @@ pub struct SurfaceHit {
     pub bary: [f32; 3],
     /// A bound on the absolute rounding error of `point`, per axis.
     pub error: Vec3,
+    /// `∂p/∂u`, the change of the point with the first texture coordinate (world space; the
+    /// shading frame's tangent; see [`SurfaceHit::dpdv`]).
+    pub dpdu: Vec3,
+    /// `∂p/∂v`. Both come from the shape's parametrisation: a mesh's UVs (its barycentric
+    /// coordinates without them), a sphere's latitude and longitude, a plane's own frame.
+    pub dpdv: Vec3,
 }
 
 /// A hit's texture coordinates, or how to find them when a texture asks.

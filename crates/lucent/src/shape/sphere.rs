@@ -74,6 +74,26 @@ impl Sphere {
         (p - self.center).normalize()
     }
 
+    /// `∂p/∂u` and `∂p/∂v` at the point of unit normal `n`, for the lat-long coordinates of
+    /// [`crate::texture::image::latlong_uv`] (`u = ½ + atan2(x, −z)/2π`, `v = acos(y)/π`):
+    /// `∂p/∂u = 2πr·(−n_z, 0, n_x)` and `∂p/∂v = πr·(n_y n_x/s, −s, n_y n_z/s)` with
+    /// `s = sin θ = √(n_x² + n_z²)`. At the poles, where longitude is undefined, any tangent
+    /// pair perpendicular to `n` stands in.
+    pub fn tangents(&self, n: Vec3) -> (Vec3, Vec3) {
+        let s = (n.x * n.x + n.z * n.z).sqrt();
+        if s < 1e-6 {
+            let (a, b) = n.any_orthonormal_pair();
+            return (
+                a * (std::f32::consts::TAU * self.radius),
+                b * (std::f32::consts::PI * self.radius),
+            );
+        }
+        let r = self.radius;
+        let dpdu = Vec3::new(-n.z, 0.0, n.x) * (std::f32::consts::TAU * r);
+        let dpdv = Vec3::new(n.y * n.x / s, -s, n.y * n.z / s) * (std::f32::consts::PI * r);
+        (dpdu, dpdv)
+    }
+
     /// `p` moved radially onto the surface, which removes most of the rounding error of `o + t·d`.
     pub fn project_to_surface(&self, p: Vec3) -> Vec3 {
         let d = p - self.center;
@@ -92,6 +112,42 @@ impl Sphere {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_tangents_are_the_derivatives_of_the_lat_long_map() {
+        // Moving along ∂p/∂u by a small step moves u by that step, and v not; likewise for v.
+        let s = Sphere {
+            center: Vec3::new(1.0, 2.0, 3.0),
+            radius: 2.0,
+        };
+        for n in [
+            Vec3::new(0.3, 0.5, -0.81),
+            Vec3::new(-0.7, -0.2, 0.68),
+            Vec3::new(0.1, 0.9, 0.42),
+        ] {
+            let n = n.normalize();
+            let (dpdu, dpdv) = s.tangents(n);
+            let uv = crate::texture::image::latlong_uv(n);
+            let h = 1e-3;
+            for (d, du, dv) in [(dpdu, h, 0.0), (dpdv, 0.0, h)] {
+                let q = s.center + n * s.radius + d * h;
+                let moved = crate::texture::image::latlong_uv(s.normal_at(q));
+                assert!(
+                    ((moved.x - uv.x) - du).abs() < 2e-5,
+                    "{n}: du {}",
+                    moved.x - uv.x
+                );
+                assert!(
+                    ((moved.y - uv.y) - dv).abs() < 2e-5,
+                    "{n}: dv {}",
+                    moved.y - uv.y
+                );
+            }
+            assert!(dpdu.dot(n).abs() < 1e-5 && dpdv.dot(n).abs() < 1e-5);
+        }
+        let (a, b) = s.tangents(Vec3::Y);
+        assert!(a.is_finite() && b.is_finite() && a.dot(Vec3::Y).abs() < 1e-6);
+    }
 
     fn unit_sphere() -> Sphere {
         Sphere {

@@ -78,6 +78,22 @@ pub fn normal([a, b, c]: [Vec3; 3]) -> Option<Vec3> {
     (b - a).cross(c - a).try_normalize()
 }
 
+/// `∂p/∂u` and `∂p/∂v` of the triangle with corners `p` and texture coordinates `uv`: the
+/// linear map from `uv` to points it spans, solved from two edges (pbrt's construction).
+/// `None` when the coordinates are degenerate (collinear or repeated).
+pub fn uv_tangents(p: [Vec3; 3], uv: [glam::Vec2; 3]) -> Option<(Vec3, Vec3)> {
+    let (duv02, duv12) = (uv[0] - uv[2], uv[1] - uv[2]);
+    let (dp02, dp12) = (p[0] - p[2], p[1] - p[2]);
+    let det = duv02.x * duv12.y - duv02.y * duv12.x;
+    if det.is_nan() || det.abs() <= 1e-12 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let dpdu = (dp02 * duv12.y - dp12 * duv02.y) * inv;
+    let dpdv = (dp12 * duv02.x - dp02 * duv12.x) * inv;
+    (dpdu.is_finite() && dpdv.is_finite()).then_some((dpdu, dpdv))
+}
+
 /// Twice the area, in double precision (for degeneracy checks).
 pub fn double_area([a, b, c]: [Vec3; 3]) -> f64 {
     (b.as_dvec3() - a.as_dvec3())
@@ -91,6 +107,21 @@ mod tests {
 
     // A right triangle in the plane z = 0: A at the origin, B on x, C on y.
     const TRI: [Vec3; 3] = [Vec3::ZERO, Vec3::X, Vec3::Y];
+
+    #[test]
+    fn uv_tangents_map_texture_steps_to_points() {
+        use glam::Vec2;
+        // u runs along −y at twice the speed, v along +x.
+        let uv = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(-2.0, 0.0),
+        ];
+        let (dpdu, dpdv) = uv_tangents(TRI, uv).unwrap();
+        assert!((dpdu - Vec3::new(0.0, -0.5, 0.0)).length() < 1e-6, "{dpdu}");
+        assert!((dpdv - Vec3::X).length() < 1e-6, "{dpdv}");
+        assert!(uv_tangents(TRI, [Vec2::ZERO; 3]).is_none());
+    }
 
     fn down_at(x: f32, y: f32) -> Ray {
         Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z)

@@ -1,7 +1,9 @@
-//! The checkerboard of Whitted's 1980 picture, as a solid texture.
+//! Checkerboards: the one of Whitted's 1980 picture as a solid texture, and Mitsuba's over
+//! texture coordinates.
 
+use super::UvTransform;
 use crate::Rgb;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Cubes of side `size` alternating between `even` and `odd`.
 ///
@@ -27,6 +29,29 @@ impl Checker {
     }
 }
 
+/// Mitsuba's `checkerboard`: the unit square of texture coordinates (after `transform`) split
+/// into 2 × 2 cells, `even` where `u` and `v` fall in the same half, `odd` elsewhere; it
+/// repeats with period 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvChecker {
+    /// Colour of the cells where `frac(u) < ½` and `frac(v) < ½`, or both are not.
+    pub even: Rgb,
+    /// Colour of the other cells.
+    pub odd: Rgb,
+    /// Applied to the surface's texture coordinates first.
+    pub transform: UvTransform,
+}
+
+impl UvChecker {
+    /// The colour at texture coordinates `uv`.
+    pub fn eval(&self, uv: Vec2) -> Rgb {
+        let uv = self.transform.apply(uv);
+        let u = uv.x - uv.x.floor() > 0.5;
+        let v = uv.y - uv.y.floor() > 0.5;
+        if u == v { self.even } else { self.odd }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -42,5 +67,19 @@ mod tests {
         assert_eq!(c.eval(Vec3::new(2.5, 0.5, 0.0)), Rgb::BLACK);
         assert_eq!(c.eval(Vec3::new(-0.5, 0.5, 0.0)), Rgb::BLACK);
         assert_eq!(c.eval(Vec3::new(-0.5, -0.5, 0.0)), Rgb::WHITE);
+    }
+
+    #[test]
+    fn the_uv_checkerboard_has_four_cells_per_unit() {
+        let c = UvChecker {
+            even: Rgb::WHITE,
+            odd: Rgb::BLACK,
+            transform: UvTransform::IDENTITY,
+        };
+        assert_eq!(c.eval(Vec2::new(0.25, 0.25)), Rgb::WHITE);
+        assert_eq!(c.eval(Vec2::new(0.75, 0.25)), Rgb::BLACK);
+        assert_eq!(c.eval(Vec2::new(0.75, 0.75)), Rgb::WHITE);
+        assert_eq!(c.eval(Vec2::new(-0.25, 0.25)), Rgb::BLACK);
+        assert_eq!(c.eval(Vec2::new(1.25, 1.25)), Rgb::WHITE);
     }
 }

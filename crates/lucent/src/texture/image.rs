@@ -1,16 +1,163 @@
-//! Image textures: linear RGB texels looked up by texture coordinates, or by direction for a
-//! lat-long environment.
+//! Image textures: linear RGB texels (and an optional alpha channel) looked up by texture
+//! coordinates — nearest, bilinear, or trilinear over a MIP pyramid by the footprint of the
+//! lookup — or by direction for a lat-long environment.
 
 use crate::Rgb;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+use std::sync::OnceLock;
 
-/// An image in linear RGB, row 0 at the top.
+/// What happens outside `[0, 1]` along one texture axis.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Wrap {
+    /// The image tiles the plane.
+    #[default]
+    Repeat,
+    /// The image tiles the plane, every other copy mirrored (glTF's `MIRRORED_REPEAT`).
+    Mirror,
+    /// The edge texels extend outwards (glTF's `CLAMP_TO_EDGE`, Mitsuba's `clamp`).
+    Clamp,
+}
+
+/// How texels are interpolated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Filter {
+    /// The texel the point falls in.
+    Nearest,
+    /// The four nearest texels, weighted by distance.
+    Bilinear,
+    /// Bilinear lookups in the two MIP levels whose texels are nearest the lookup's footprint,
+    /// blended: distant textures neither alias nor shimmer.
+    #[default]
+    Trilinear,
+}
+
+/// One texel: colour and alpha.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Texel {
+    /// Linear RGB.
+    pub rgb: Rgb,
+    /// Coverage in `[0, 1]`; 1 for images without alpha.
+    pub alpha: f32,
+}
+
+impl Texel {
+    fn scale(self, w: f32) -> Texel {
+        Texel {
+            rgb: self.rgb * w,
+            alpha: self.alpha * w,
+        }
+    }
+
+    fn add(self, o: Texel) -> Texel {
+        Texel {
+            rgb: self.rgb + o.rgb,
+            alpha: self.alpha + o.alpha,
+        }
+    }
+}
+
+/// One level of the pyramid.
 #[derive(Clone, Debug, PartialEq)]
-pub struct ImageTexture {
+struct Level {
     width: u32,
     height: u32,
     texels: Vec<Rgb>,
+    /// Empty when the image has no alpha.
+    alpha: Vec<f32>,
+}
+
+impl Level {
+    fn texel(&self, x: usize, y: usize) -> Texel {
+        let i = y * self.width as usize + x;
+        Texel {
+            rgb: self.texels[i],
+            alpha: self.alpha.get(i).copied().unwrap_or(1.0),
+        }
+    }
+
+    /// The next level down: each texel the mean of (up to) 2 × 2 texels of this one.
+    fn halved(&self) -> Level {
+        let (w, h) = (
+            self.width.div_ceil(2).max(1),
+            self.height.div_ceil(2).max(1),
+        );
+        let (sw, sh) = (self.width as usize, self.height as usize);
+        let mut texels = Vec::with_capacity(w as usize * h as usize);
+        let mut alpha = Vec::with_capacity(if self.alpha.is_empty() {
+            0
+        } else {
+            texels.capacity()
+        });
+        for y in 0..h as usize {
+            for x in 0..w as usize {
+                let mut sum = Texel {
+                    rgb: Rgb::BLACK,
+                    alpha: 0.0,
+                };
+                let mut n = 0.0;
+                for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    let (sx, sy) = (2 * x + dx, 2 * y + dy);
+                    if sx < sw && sy < sh {
+                        sum = sum.add(self.texel(sx, sy));
+                        n += 1.0;
+                    }
+                }
+                let mean = sum.scale(1.0 / n);
+                texels.push(mean.rgb);
+                if !self.alpha.is_empty() {
+                    alpha.push(mean.alpha);
+                }
+            }
+        }
+        Level {
+            width: w,
+            height: h,
+            texels,
+            alpha,
+        }
+    }
+}
+
+/// An image in linear RGB, row 0 at the top, with its MIP pyramid built on first need.
+#[derive(Debug)]
+pub struct ImageTexture {
+    base: Level,
+    /// Levels 1, 2, … down to 1 × 1.
+    pyramid: OnceLock<Vec<Level>>,
+}
+
+impl Clone for ImageTexture {
+    fn clone(&self) -> Self {
+        Self {
+            base: self.base.clone(),
+            pyramid: OnceLock::new(),
+        }
+    }
+}
+
+impl PartialEq for ImageTexture {
+    fn eq(&self, other: &Self) -> bool {
+        self.base == other.base
+    }
+}
+
+/// `c` mapped into `[0, n)` by the wrap mode.
+fn wrap_index(c: i64, n: u32, wrap: Wrap) -> usize {
+    let n = i64::from(n);
+    let i = match wrap {
+        Wrap::Repeat => c.rem_euclid(n),
+        Wrap::Clamp => c.clamp(0, n - 1),
+        Wrap::Mirror => {
+            let period = c.rem_euclid(2 * n);
+            if period < n {
+                period
+            } else {
+                2 * n - 1 - period
+            }
+        }
+    };
+    i as usize
 }
 
 impl ImageTexture {
@@ -19,46 +166,74 @@ impl ImageTexture {
     pub fn new(width: u32, height: u32, texels: Vec<Rgb>) -> Option<Self> {
         let n = width as usize * height as usize;
         (n > 0 && texels.len() == n).then_some(Self {
-            width,
-            height,
-            texels,
+            base: Level {
+                width,
+                height,
+                texels,
+                alpha: Vec::new(),
+            },
+            pyramid: OnceLock::new(),
         })
+    }
+
+    /// The image with an alpha channel (one value per texel, in `[0, 1]`), or `None` when the
+    /// count does not match.
+    pub fn with_alpha(mut self, alpha: Vec<f32>) -> Option<Self> {
+        (alpha.len() == self.base.texels.len()).then(|| {
+            self.base.alpha = alpha;
+            self.pyramid = OnceLock::new();
+            self
+        })
+    }
+
+    /// Whether the image has an alpha channel.
+    pub fn has_alpha(&self) -> bool {
+        !self.base.alpha.is_empty()
     }
 
     /// Width in texels.
     pub fn width(&self) -> u32 {
-        self.width
+        self.base.width
     }
 
     /// Height in texels.
     pub fn height(&self) -> u32 {
-        self.height
+        self.base.height
     }
 
     /// The image with every texel multiplied by `scale`.
     pub fn scaled(mut self, scale: Rgb) -> Self {
-        for t in &mut self.texels {
+        for t in &mut self.base.texels {
             *t *= scale;
         }
+        self.pyramid = OnceLock::new();
         self
     }
 
     /// The mean of every texel.
     pub fn mean(&self) -> Rgb {
-        let sum = self.texels.iter().fold(Rgb::BLACK, |a, &t| a + t);
-        sum / self.texels.len() as f32
+        let sum = self.base.texels.iter().fold(Rgb::BLACK, |a, &t| a + t);
+        sum / self.base.texels.len() as f32
+    }
+
+    /// The mean of the alpha channel (1 without one).
+    pub fn mean_alpha(&self) -> f32 {
+        if self.base.alpha.is_empty() {
+            return 1.0;
+        }
+        self.base.alpha.iter().sum::<f32>() / self.base.alpha.len() as f32
     }
 
     /// The mean over all directions of the image as a lat-long environment: rows weighted by
     /// the solid angle they cover (`sin θ`), so the poles count as little as they should.
     pub fn latlong_mean(&self) -> Rgb {
-        let (w, h) = (self.width as usize, self.height as usize);
+        let (w, h) = (self.width() as usize, self.height() as usize);
         let mut sum = Rgb::BLACK;
         let mut weights = 0.0;
         for y in 0..h {
             let theta = std::f32::consts::PI * (y as f32 + 0.5) / h as f32;
             let weight = theta.sin();
-            let row = self.texels[y * w..(y + 1) * w]
+            let row = self.base.texels[y * w..(y + 1) * w]
                 .iter()
                 .fold(Rgb::BLACK, |a, &t| a + t);
             sum += row * weight;
@@ -71,45 +246,119 @@ impl ImageTexture {
         }
     }
 
-    /// The texel at `(x, y)`, repeating sideways, and up and down unless `clamp_rows`.
-    fn texel(&self, x: i64, y: i64, clamp_rows: bool) -> Rgb {
-        let x = x.rem_euclid(i64::from(self.width)) as usize;
-        let y = if clamp_rows {
-            y.clamp(0, i64::from(self.height) - 1) as usize
+    /// The number of MIP levels, the full image included.
+    pub fn levels(&self) -> usize {
+        1 + self.pyramid().len()
+    }
+
+    fn pyramid(&self) -> &[Level] {
+        self.pyramid.get_or_init(|| {
+            let mut levels: Vec<Level> = Vec::new();
+            loop {
+                let last = levels.last().unwrap_or(&self.base);
+                if last.width == 1 && last.height == 1 {
+                    break levels;
+                }
+                let next = last.halved();
+                levels.push(next);
+            }
+        })
+    }
+
+    fn level(&self, i: usize) -> &Level {
+        if i == 0 {
+            &self.base
         } else {
-            y.rem_euclid(i64::from(self.height)) as usize
-        };
-        self.texels[y * self.width as usize + x]
+            &self.pyramid()[i - 1]
+        }
     }
 
     /// Bilinear lookup at `(u, v)`: `(0, 0)` is the top-left corner of the image, `(1, 1)` the
     /// bottom-right; the image repeats outside.
     pub fn lookup(&self, uv: Vec2) -> Rgb {
-        self.bilinear(uv, false)
+        bilinear(&self.base, uv, [Wrap::Repeat; 2]).rgb
     }
 
-    fn bilinear(&self, uv: Vec2, clamp_rows: bool) -> Rgb {
+    /// The filtered texel at `uv` (`(0, 0)` the top-left corner) for a lookup whose footprint
+    /// spans `duvdx` and `duvdy` (the change of `uv` from one pixel to the next; zero for a
+    /// point), with `wrap` along u and v.
+    pub fn sample(&self, uv: Vec2, duv: [Vec2; 2], wrap: [Wrap; 2], filter: Filter) -> Texel {
         if !uv.is_finite() {
-            return Rgb::BLACK;
+            return Texel {
+                rgb: Rgb::BLACK,
+                alpha: 0.0,
+            };
         }
-        // Texel centres sit at half-integers.
-        let x = f64::from(uv.x) * f64::from(self.width) - 0.5;
-        let y = f64::from(uv.y) * f64::from(self.height) - 0.5;
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let t = |x, y| self.texel(x, y, clamp_rows);
-        let top = t(x0, y0) * (1.0 - fx) + t(x0 + 1, y0) * fx;
-        let bottom = t(x0, y0 + 1) * (1.0 - fx) + t(x0 + 1, y0 + 1) * fx;
-        top * (1.0 - fy) + bottom * fy
+        match filter {
+            Filter::Nearest => nearest(&self.base, uv, wrap),
+            Filter::Bilinear => bilinear(&self.base, uv, wrap),
+            Filter::Trilinear => {
+                // The footprint's width in texels of the full image (pbrt's convention: twice
+                // the largest differential), and the level where it is one texel wide.
+                let size = Vec2::new(self.width() as f32, self.height() as f32);
+                let width = 2.0
+                    * (duv[0] * size)
+                        .abs()
+                        .max_element()
+                        .max((duv[1] * size).abs().max_element());
+                if width.is_nan() || width <= 1.0 {
+                    return bilinear(&self.base, uv, wrap);
+                }
+                let level = width.log2().min((self.levels() - 1) as f32);
+                let lo = level.floor() as usize;
+                let t = level - lo as f32;
+                let a = bilinear(self.level(lo), uv, wrap);
+                if t <= 0.0 || lo + 1 >= self.levels() {
+                    return a;
+                }
+                let b = bilinear(self.level(lo + 1), uv, wrap);
+                a.scale(1.0 - t).add(b.scale(t))
+            }
+        }
     }
 
     /// The lat-long (equirectangular) lookup along unit direction `d`: +y is the top row, the
     /// centre column looks along −z, u grows towards +x.
     pub fn lookup_direction(&self, d: Vec3) -> Rgb {
         // Sideways the image wraps around; the poles do not meet.
-        self.bilinear(latlong_uv(d), true)
+        bilinear(&self.base, latlong_uv(d), [Wrap::Repeat, Wrap::Clamp]).rgb
     }
+}
+
+/// The texel holding `uv`.
+fn nearest(level: &Level, uv: Vec2, wrap: [Wrap; 2]) -> Texel {
+    let x = (f64::from(uv.x) * f64::from(level.width)).floor() as i64;
+    let y = (f64::from(uv.y) * f64::from(level.height)).floor() as i64;
+    level.texel(
+        wrap_index(x, level.width, wrap[0]),
+        wrap_index(y, level.height, wrap[1]),
+    )
+}
+
+/// The four texels around `uv`, weighted by distance; texel centres sit at half-integers.
+fn bilinear(level: &Level, uv: Vec2, wrap: [Wrap; 2]) -> Texel {
+    if !uv.is_finite() {
+        return Texel {
+            rgb: Rgb::BLACK,
+            alpha: 0.0,
+        };
+    }
+    let x = f64::from(uv.x) * f64::from(level.width) - 0.5;
+    let y = f64::from(uv.y) * f64::from(level.height) - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
+    let (x0, y0) = (x0 as i64, y0 as i64);
+    let t = |x: i64, y: i64| {
+        level.texel(
+            wrap_index(x, level.width, wrap[0]),
+            wrap_index(y, level.height, wrap[1]),
+        )
+    };
+    let top = t(x0, y0).scale(1.0 - fx).add(t(x0 + 1, y0).scale(fx));
+    let bottom = t(x0, y0 + 1)
+        .scale(1.0 - fx)
+        .add(t(x0 + 1, y0 + 1).scale(fx));
+    top.scale(1.0 - fy).add(bottom.scale(fy))
 }
 
 /// Texture coordinates of unit direction `d` in a lat-long image (see
@@ -156,6 +405,65 @@ mod tests {
         );
         assert!((polar.mean().r - 0.1).abs() < 1e-6);
         assert!(ImageTexture::new(2, 2, vec![Rgb::BLACK]).is_none());
+    }
+
+    #[test]
+    fn wrap_modes_repeat_mirror_and_clamp() {
+        let img = two_by_two();
+        let at = |u: f32, wrap| {
+            img.sample(
+                Vec2::new(u, 0.25),
+                [Vec2::ZERO; 2],
+                [wrap, Wrap::Repeat],
+                Filter::Nearest,
+            )
+            .rgb
+            .r
+        };
+        // Texels along the top row: 0, 1. One image to the right:
+        assert_eq!(at(1.25, Wrap::Repeat), 0.0);
+        assert_eq!(at(1.25, Wrap::Mirror), 1.0);
+        assert_eq!(at(1.75, Wrap::Mirror), 0.0);
+        assert_eq!(at(1.25, Wrap::Clamp), 1.0);
+        assert_eq!(at(-3.0, Wrap::Clamp), 0.0);
+        assert_eq!(at(-0.25, Wrap::Mirror), 0.0);
+    }
+
+    #[test]
+    fn the_pyramid_averages_down_to_one_texel() {
+        // A 4 × 2 image with alpha: levels 4×2, 2×1, 1×1.
+        let texels: Vec<Rgb> = (0..8).map(|i| Rgb::gray(i as f32)).collect();
+        let img = ImageTexture::new(4, 2, texels)
+            .unwrap()
+            .with_alpha(vec![1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0])
+            .unwrap();
+        assert_eq!(img.levels(), 3);
+        let top = img.level(2).texel(0, 0);
+        assert!((top.rgb.r - 3.5).abs() < 1e-6 && (top.alpha - 0.5).abs() < 1e-6);
+        // A footprint of the whole image reads the top level; a point reads the base.
+        let whole = img.sample(
+            Vec2::new(0.3, 0.6),
+            [Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)],
+            [Wrap::Repeat; 2],
+            Filter::Trilinear,
+        );
+        assert!((whole.rgb.r - 3.5).abs() < 1e-5, "{whole:?}");
+        let point = img.sample(
+            Vec2::new(0.125, 0.25),
+            [Vec2::ZERO; 2],
+            [Wrap::Repeat; 2],
+            Filter::Trilinear,
+        );
+        assert_eq!(point.rgb.r, 0.0);
+        assert_eq!(point.alpha, 1.0);
+        // Between levels the two are blended.
+        let half = img.sample(
+            Vec2::new(0.125, 0.25),
+            [Vec2::new(0.5 * 2f32.powf(0.5) / 4.0, 0.0), Vec2::ZERO],
+            [Wrap::Repeat; 2],
+            Filter::Trilinear,
+        );
+        assert!(half.rgb.r > 0.0 && half.rgb.r < 3.5, "{half:?}");
     }
 
     #[test]

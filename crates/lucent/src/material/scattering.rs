@@ -1,0 +1,408 @@
+//! A material resolved at a hit: the BSDFs of its surface's leaves with their textures
+//! evaluated, each with its weight (from blends) and its shading frame (from normal maps and
+//! the side the ray arrived on), evaluated and sampled as one BSDF in world space.
+//!
+//! Sampling picks a part with probability equal to its weight (reusing `u_lobe`, rescaled, for
+//! the part's own lobe choice); a non-delta direction is then weighted by the whole mixture's
+//! value over its whole density (one-sample MIS), a Dirac one by the part's own weight.
+
+use arrayvec::ArrayVec;
+use glam::{Vec2, Vec3};
+
+use super::shading::{Geometry, facing};
+use super::{Material, Surface};
+use crate::Rgb;
+use crate::bsdf::{Bsdf, Frame, Transport};
+use crate::texture::{ImageTexture, TexCoords};
+
+/// The most parts a resolved surface keeps (blends nested three deep); further parts are
+/// dropped with their weight.
+const MAX_PARTS: usize = 8;
+
+/// Which side of the surface a ray arrived on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// The side the geometric normal points to.
+    Front,
+    /// The other.
+    Back,
+}
+
+/// One leaf of a resolved surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Part<'a> {
+    /// Its share of the mixture; the weights sum to at most 1.
+    pub weight: f32,
+    /// The shading frame its BSDF works in.
+    pub frame: Frame,
+    /// The geometric normal, flipped as the frame is.
+    pub ng: Vec3,
+    /// Its BSDF, textures evaluated.
+    pub bsdf: Bsdf<'a>,
+}
+
+impl Part<'_> {
+    /// `w` in the frame, or `None` where the shading and the geometric normal put it on
+    /// different sides (the no-leak rule of `material/shading.rs`).
+    #[inline]
+    fn local(&self, w: Vec3) -> Option<Vec3> {
+        let l = self.frame.to_local(w);
+        ((w.dot(self.ng) > 0.0) == (l.z > 0.0)).then_some(l)
+    }
+}
+
+/// A direction drawn by [`Scattering::sample`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScatteringSample {
+    /// The sampled direction, a unit vector in world space, away from the surface.
+    pub wi: Vec3,
+    /// `f·|cos θi| / pdf`: the factor the path's throughput is multiplied by.
+    pub weight: Rgb,
+    /// The solid-angle density (or, when `delta`, the probability of the Dirac lobe).
+    pub pdf: f32,
+    /// True for a Dirac lobe.
+    pub delta: bool,
+    /// Whether it stayed on the side it came from (else it passed through the surface).
+    pub reflected: bool,
+}
+
+/// The material at one hit, as one BSDF over world directions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scattering<'a> {
+    parts: ArrayVec<Part<'a>, MAX_PARTS>,
+    /// The sum of the weights.
+    total: f32,
+}
+
+/// What resolving needs besides the surface.
+struct Resolve<'s, 'a> {
+    material: &'a Material,
+    at: &'s TexCoords,
+    images: &'s [ImageTexture],
+    /// The geometric normal.
+    ng: Vec3,
+    /// The unit direction back towards where the ray came from.
+    wo: Vec3,
+    side: Side,
+    out: ArrayVec<Part<'a>, MAX_PARTS>,
+}
+
+impl<'a> Scattering<'a> {
+    /// `material` at a hit with shading geometry `geometry`, geometric normal `ng` and texture
+    /// coordinates `at`, seen along unit direction `dir` (the arriving ray's).
+    pub fn new(
+        material: &'a Material,
+        geometry: Geometry,
+        ng: Vec3,
+        at: &TexCoords,
+        images: &[ImageTexture],
+        dir: Vec3,
+    ) -> Self {
+        let side = if ng.dot(dir) > 0.0 {
+            Side::Back
+        } else {
+            Side::Front
+        };
+        let mut r = Resolve {
+            material,
+            at,
+            images,
+            ng,
+            wo: -dir,
+            side,
+            out: ArrayVec::new(),
+        };
+        r.surface(&material.surface, 1.0, geometry, false);
+        let total = r.out.iter().map(|p| p.weight).sum();
+        Self {
+            parts: r.out,
+            total,
+        }
+    }
+
+    /// The parts.
+    pub fn parts(&self) -> &[Part<'a>] {
+        &self.parts
+    }
+
+    /// `f(wo, wi)·|cos θi|` summed over the parts' non-delta lobes, for unit world directions
+    /// pointing away from the surface.
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: Transport) -> Rgb {
+        let mut f = Rgb::BLACK;
+        for p in &self.parts {
+            if let Some(i) = p.local(wi) {
+                f += p.bsdf.eval(p.frame.to_local(wo), i, mode) * p.weight;
+            }
+        }
+        f
+    }
+
+    /// The solid-angle density with which [`Scattering::sample`] draws `wi`.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if self.total <= 0.0 {
+            return 0.0;
+        }
+        let mut pdf = 0.0;
+        for p in &self.parts {
+            if let Some(i) = p.local(wi) {
+                pdf += p.bsdf.pdf(p.frame.to_local(wo), i) * p.weight;
+            }
+        }
+        pdf / self.total
+    }
+
+    /// A direction drawn from the mixture with two uniform inputs; `None` when nothing is
+    /// scattered or the direction would leak through the surface.
+    pub fn sample(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+        mode: Transport,
+    ) -> Option<ScatteringSample> {
+        // The part, and u_lobe rescaled to [0, 1) within its share.
+        let mut acc = 0.0;
+        let mut pick = None;
+        let target = u_lobe * self.total;
+        for (i, p) in self.parts.iter().enumerate() {
+            if target < acc + p.weight || i + 1 == self.parts.len() {
+                let u = ((target - acc) / p.weight).clamp(0.0, 1.0 - f32::EPSILON);
+                pick = Some((i, u));
+                break;
+            }
+            acc += p.weight;
+        }
+        let (i, u_part) = pick?;
+        let p = &self.parts[i];
+        let local_wo = p.frame.to_local(wo);
+        let s = p.bsdf.sample(local_wo, u_part, u, mode)?;
+        let wi = p.frame.to_world(s.wi).normalize();
+        // Leaks: the sampled side must agree with the geometric normal.
+        let reflected = (s.wi.z > 0.0) == (local_wo.z > 0.0);
+        let same_side = (wi.dot(p.ng) > 0.0) == (wo.dot(p.ng) > 0.0);
+        if same_side != reflected {
+            return None;
+        }
+        if s.delta || self.parts.len() == 1 {
+            // The part was picked with probability w_i/W and carries w_i·f_i: its own weight
+            // times W.
+            return Some(ScatteringSample {
+                wi,
+                weight: s.weight * self.total,
+                pdf: s.pdf * (p.weight / self.total),
+                delta: s.delta,
+                reflected,
+            });
+        }
+        let value = self.eval(wo, wi, mode);
+        let pdf = self.pdf(wo, wi);
+        (pdf > 0.0 && !value.is_black()).then(|| ScatteringSample {
+            wi,
+            weight: value * (1.0 / pdf),
+            pdf,
+            delta: false,
+            reflected,
+        })
+    }
+
+    /// True when every lobe of every part is a Dirac delta (light sampling is useless there).
+    pub fn is_delta(&self) -> bool {
+        self.parts.iter().all(|p| p.bsdf.is_delta())
+    }
+
+    /// The probability that [`Scattering::sample`] from `wo` picks a Dirac lobe.
+    pub fn delta_share(&self, wo: Vec3) -> f32 {
+        if self.total <= 0.0 {
+            return 0.0;
+        }
+        let share: f32 = self
+            .parts
+            .iter()
+            .map(|p| p.weight * p.bsdf.delta_share(p.frame.to_local(wo)))
+            .sum();
+        share / self.total
+    }
+
+    /// Whether any part transmits.
+    pub fn transmits(&self) -> bool {
+        self.parts.iter().any(|p| p.bsdf.transmits())
+    }
+}
+
+impl<'a> Resolve<'_, 'a> {
+    /// Adds the parts of `surface` with `weight`, shading geometry `g`, the frame already
+    /// turned to the back when `flipped`.
+    fn surface(&mut self, surface: &'a Surface, weight: f32, g: Geometry, flipped: bool) {
+        if weight.is_nan() || weight <= 0.0 {
+            return;
+        }
+        match surface {
+            Surface::Blend {
+                weight: w,
+                first,
+                second,
+            } => {
+                let t = w.eval_float(self.at, self.images).clamp(0.0, 1.0);
+                self.surface(first, weight * (1.0 - t), g, flipped);
+                self.surface(second, weight * t, g, flipped);
+            }
+            Surface::TwoSided { front, back } => {
+                if self.side == Side::Back && !flipped {
+                    let g = Geometry { n: -g.n, ..g };
+                    self.surface(back, weight, g, true);
+                } else {
+                    self.surface(front, weight, g, flipped);
+                }
+            }
+            Surface::NormalMap {
+                normals,
+                strength,
+                inner,
+            } => {
+                let texel = normals.eval(self.at, self.images);
+                let mapped = g.normal_mapped(texel, *strength);
+                self.surface(inner, weight, mapped, flipped);
+            }
+            Surface::BumpMap {
+                height,
+                scale,
+                inner,
+            } => {
+                let grad = self.height_gradient(height) * *scale;
+                let ng = if flipped { -self.ng } else { self.ng };
+                let bumped = g.bumped(grad, ng);
+                self.surface(inner, weight, bumped, flipped);
+            }
+            leaf => {
+                let Some(bsdf) = self.leaf(leaf) else { return };
+                // A two-sided reflector scatters on whichever side the ray arrives.
+                let flip = !flipped
+                    && self.side == Side::Back
+                    && self.material.two_sided
+                    && !bsdf.transmits();
+                let (n, ng) = if flip || flipped {
+                    (if flip { -g.n } else { g.n }, -self.ng)
+                } else {
+                    (g.n, self.ng)
+                };
+                let n = facing(n, ng, self.wo);
+                let frame = Frame::from_normal_tangent(n, g.dpdu);
+                if self.out.is_full() {
+                    return;
+                }
+                self.out.push(Part {
+                    weight,
+                    frame,
+                    ng,
+                    bsdf,
+                });
+            }
+        }
+    }
+
+    /// `(∂h/∂u, ∂h/∂v)` of a height texture at the hit, by central differences over a step of
+    /// half the lookup's footprint (at least `5·10⁻⁴` in texture coordinates).
+    fn height_gradient(&self, height: &crate::texture::Texture) -> Vec2 {
+        let d = self.at.duv;
+        let du = (0.5 * (d[0].x.abs() + d[1].x.abs())).max(5e-4);
+        let dv = (0.5 * (d[0].y.abs() + d[1].y.abs())).max(5e-4);
+        let h = |offset: Vec2| {
+            let at = TexCoords {
+                uv: self.at.uv + offset,
+                ..*self.at
+            };
+            height.eval_float(&at, self.images)
+        };
+        Vec2::new(
+            (h(Vec2::new(du, 0.0)) - h(Vec2::new(-du, 0.0))) / (2.0 * du),
+            (h(Vec2::new(0.0, dv)) - h(Vec2::new(0.0, -dv))) / (2.0 * dv),
+        )
+    }
+
+    /// The BSDF of a leaf with its textures evaluated; `None` for a black one.
+    fn leaf(&self, surface: &'a Surface) -> Option<Bsdf<'a>> {
+        let (at, images) = (self.at, self.images);
+        let m = self.material;
+        let color = if m.vertex_colors {
+            at.color
+        } else {
+            Rgb::WHITE
+        };
+        let c = |t: &crate::texture::Texture| t.eval(at, images);
+        Some(match surface {
+            Surface::Classic => m.classic_bsdf(m.kd.eval(at, images) * color),
+            Surface::Diffuse { reflectance } => Bsdf::Lambert {
+                albedo: c(reflectance) * color,
+            },
+            Surface::Conductor {
+                eta,
+                k,
+                specular,
+                roughness,
+            } => match roughness {
+                Some(r) => Bsdf::RoughConductor {
+                    eta: c(eta),
+                    k: c(k),
+                    specular: c(specular),
+                    microfacet: r.at(at, images),
+                },
+                None => Bsdf::Conductor {
+                    eta: c(eta),
+                    k: c(k),
+                    specular: c(specular),
+                },
+            },
+            Surface::Dielectric {
+                eta,
+                specular,
+                transmittance,
+                roughness,
+            } => match roughness {
+                Some(r) => Bsdf::RoughDielectric {
+                    eta: *eta,
+                    specular: c(specular),
+                    transmittance: c(transmittance),
+                    microfacet: r.at(at, images),
+                },
+                None => Bsdf::Dielectric {
+                    eta: *eta,
+                    specular: c(specular),
+                    transmittance: c(transmittance),
+                },
+            },
+            Surface::ThinDielectric {
+                eta,
+                specular,
+                transmittance,
+            } => Bsdf::ThinDielectric {
+                eta: *eta,
+                specular: c(specular),
+                transmittance: c(transmittance),
+            },
+            Surface::Plastic {
+                diffuse,
+                eta,
+                specular,
+                nonlinear,
+                coat,
+            } => match coat {
+                Some(coat) => Bsdf::RoughPlastic {
+                    diffuse: c(diffuse) * color,
+                    specular: c(specular),
+                    nonlinear: *nonlinear,
+                    coat,
+                },
+                None => Bsdf::Plastic {
+                    diffuse: c(diffuse) * color,
+                    eta: *eta,
+                    specular: c(specular),
+                    nonlinear: *nonlinear,
+                },
+            },
+            Surface::Blend { .. }
+            | Surface::TwoSided { .. }
+            | Surface::NormalMap { .. }
+            | Surface::BumpMap { .. } => return None,
+        })
+    }
+}

@@ -1,0 +1,116 @@
+//! Cut-out surfaces: where a material's opacity (glTF's alpha, Mitsuba's `mask`) is below 1,
+//! a ray passes through the surface as if it were not there — camera and scattered rays, and
+//! shadow rays alike, so a cut-away leaf casts no shadow where it is cut away.
+//!
+//! Fractional opacity is a coin toss per crossing: the ray passes where a hash of the hit
+//! point and the ray's direction falls at or above the opacity (pbrt-v4's `HashFloat`), so the
+//! same crossing is decided the same way whichever query asks, and an image does not depend on
+//! thread count or tile order. In expectation a surface of opacity `a` blocks the share `a`.
+
+use super::Scene;
+use crate::shape::SurfaceHit;
+use crate::spawn::{Leaving, spawn_ray};
+use crate::texture::TexCoords;
+use lucent_accel::{Ray, TraversalStats};
+
+/// The most cut-away surfaces one query passes through before it takes the next one as
+/// opaque (a stack of many transparent leaves, or a loop of coplanar ones).
+const MAX_CROSSINGS: u32 = 64;
+
+/// A uniform number in `[0, 1)` from the bits of a crossing.
+fn crossing_hash(hit: &SurfaceHit, ray: &Ray) -> f32 {
+    let mut h: u64 = 0x9E37_79B9_7F4A_7C15;
+    for v in [
+        hit.point.x,
+        hit.point.y,
+        hit.point.z,
+        ray.dir.x,
+        ray.dir.y,
+        ray.dir.z,
+    ] {
+        h ^= u64::from(v.to_bits());
+        h = h.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        h ^= h >> 31;
+    }
+    h = h.wrapping_mul(0x94D0_49BB_1331_11EB);
+    h ^= h >> 29;
+    (h >> 40) as f32 / (1u64 << 24) as f32
+}
+
+impl Scene {
+    /// Whether the surface hit by `ray` at `hit` stops it: always for an opaque material;
+    /// with the probability of its opacity there for a cut-out one.
+    pub fn stops(&self, hit: &SurfaceHit, ray: &Ray) -> bool {
+        let m = &self.materials[hit.material as usize];
+        if m.opacity.is_none() {
+            return true;
+        }
+        let at = TexCoords {
+            uv: hit.uv(),
+            ..TexCoords::at(hit.texture_coords, glam::Vec2::ZERO)
+        };
+        let opacity = m.opacity(&at, &self.images);
+        opacity >= 1.0 || (opacity > 0.0 && crossing_hash(hit, ray) < opacity)
+    }
+
+    /// The nearest surface along `ray` (leaving `from`) that stops it: [`Scene::intersect_from`]
+    /// past the cut-away surfaces it crosses (`t` then counts from `ray`'s origin, up to the
+    /// small offsets of the rays that go on).
+    pub fn intersect_opaque(
+        &self,
+        ray: &Ray,
+        from: Option<Leaving>,
+        stats: &mut TraversalStats,
+    ) -> Option<SurfaceHit> {
+        let mut hit = self.intersect_from(ray, from, stats)?;
+        if !self.has_cutouts {
+            return Some(hit);
+        }
+        let mut t0 = 0.0;
+        for _ in 0..MAX_CROSSINGS {
+            if self.stops(&hit, ray) {
+                hit.t += t0;
+                return Some(hit);
+            }
+            // Go on from the far side, with the parameter counted from the first origin.
+            let (next, leaving) = spawn_ray(&hit, ray.dir);
+            t0 += hit.t;
+            hit = self.intersect_from(&next, Some(leaving), stats)?;
+        }
+        hit.t += t0;
+        Some(hit)
+    }
+
+    /// Whether anything stops `ray` (leaving `from`) before `t_max`: [`Scene::occlusion`],
+    /// except that cut-away surfaces let it through.
+    pub fn blocked(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        from: Option<Leaving>,
+        stats: &mut TraversalStats,
+    ) -> bool {
+        if !self.has_cutouts {
+            return self.occlusion(ray, t_max, from, stats, |_, _| true);
+        }
+        let mut ray = *ray;
+        let mut from = from;
+        let mut left = t_max;
+        for _ in 0..MAX_CROSSINGS {
+            let Some(hit) = self.intersect_from(&ray, from, stats) else {
+                return false;
+            };
+            if hit.t >= left {
+                return false;
+            }
+            if self.stops(&hit, &ray) {
+                return true;
+            }
+            left -= hit.t;
+            let (next, leaving) = spawn_ray(&hit, ray.dir);
+            ray = next;
+            from = Some(leaving);
+        }
+        true
+    }
+}
