@@ -1,6 +1,6 @@
 """Prints the named conductors Mitsuba 3 knows as RGB (eta, k), as its RGB variants compute
 them from the measured spectra in its data folder: the table in
-crates/lucent/src/material/metals.rs. Run: bench/peers/run.sh metals (or with the venv's python).
+crates/lucent/src/material/metals.rs. Run: bench/peers/run.sh metals.
 """
 import os
 import sys

@@ -22,4 +22,10 @@ if [ -z "${DRJIT_LIBLLVM_PATH:-}" ]; then
     fi
 fi
 
+# `run.sh conformance …` and `run.sh metals` run the other scripts here; anything else goes to
+# mitsuba.py (the Cornell box comparison).
+case "${1:-}" in
+    conformance) shift; exec "$venv/bin/python" "$root/bench/peers/conformance.py" "$@" ;;
+    metals) shift; exec "$venv/bin/python" "$root/bench/peers/metals.py" "$@" ;;
+esac
 exec "$venv/bin/python" "$root/bench/peers/mitsuba.py" "$@"

@@ -6,7 +6,7 @@ use super::{Context, RADIUS_RANGE, check, refuse_keys, required, shapes, span};
 use crate::desc::{ObjectDesc, ObjectKind};
 use crate::error::LoadError;
 use glam::{Affine3A, Mat3, Vec3};
-use lucent::shape::{Mesh, Plane, Sphere, triangle};
+use lucent::shape::{Mesh, Plane, Sphere, SphereMap, triangle};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use toml::Spanned;
@@ -48,10 +48,11 @@ pub fn add_object(
         ("rotate", span(&d.rotate)),
         ("scale", span(&d.scale)),
         ("motion", span(&d.motion)),
+        ("uv_axes", span(&d.uv_axes)),
     ];
     const PLACED: [&str; 5] = ["flip_normals", "transform", "translate", "rotate", "scale"];
     let mut takes: Vec<&str> = match d.kind {
-        ObjectKind::Sphere => vec!["center", "radius"],
+        ObjectKind::Sphere => vec!["center", "radius", "uv_axes"],
         ObjectKind::Plane => vec!["point", "normal"],
         ObjectKind::Triangle => vec!["vertices"],
         ObjectKind::Mesh => ["file", "part", "smooth"]
@@ -96,7 +97,26 @@ pub fn add_object(
                 in_range,
                 &format!("a sphere's radius must be between {lo:e} and {hi:e}, got {r:e}"),
             )?;
-            let id = ctx.builder.sphere(Sphere { center, radius: r }, material);
+            let map = match &d.uv_axes {
+                None => SphereMap::default(),
+                Some(a) => {
+                    let [x, y, z] = a.get_ref().map(|v| v.0.normalize_or_zero());
+                    let orthonormal = [x, y, z].iter().all(|v| (v.length() - 1.0).abs() < 1e-4)
+                        && x.dot(y).abs() < 1e-4
+                        && y.dot(z).abs() < 1e-4
+                        && z.dot(x).abs() < 1e-4;
+                    check(
+                        source,
+                        a.span(),
+                        orthonormal,
+                        "a sphere's uv_axes must be three perpendicular, non-zero directions",
+                    )?;
+                    SphereMap { x, y, z }
+                }
+            };
+            let id = ctx
+                .builder
+                .sphere_mapped(Sphere { center, radius: r }, material, map);
             if let Some(m) = motion {
                 ctx.builder.motion(id, m);
             }

@@ -1,5 +1,8 @@
 //! The unit shapes of `[[object]]` kinds `rectangle`, `cube` and `disk`, as meshes with normals
-//! and texture coordinates (Mitsuba's conventions: placed by a transform).
+//! and texture coordinates (Mitsuba's conventions: placed by a transform; a rectangle's
+//! `(u, v) = ((x + 1)/2, (y + 1)/2)`, so `v` grows with y and, as image rows run downwards,
+//! an image appears upside down unless its placement flips it, as in Mitsuba; a disk's are
+//! planar, Mitsuba's polar).
 
 use glam::{Vec2, Vec3};
 use lucent::shape::Mesh;
@@ -17,7 +20,7 @@ pub fn rectangle() -> Mesh {
     ];
     let uvs = positions
         .iter()
-        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (1.0 - p.y)))
+        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (p.y + 1.0)))
         .collect();
     Mesh {
         positions,
@@ -43,7 +46,7 @@ pub fn cube() -> Mesh {
             for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
                 mesh.positions.push(n + a * u + b * v);
                 mesh.normals.push(n);
-                mesh.uvs.push(Vec2::new(0.5 * (a + 1.0), 0.5 * (1.0 - b)));
+                mesh.uvs.push(Vec2::new(0.5 * (a + 1.0), 0.5 * (b + 1.0)));
             }
             mesh.triangles.push([base, base + 1, base + 2]);
             mesh.triangles.push([base, base + 2, base + 3]);
@@ -65,7 +68,7 @@ pub fn disk() -> Mesh {
     mesh.uvs = mesh
         .positions
         .iter()
-        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (1.0 - p.y)))
+        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (p.y + 1.0)))
         .collect();
     mesh
 }

@@ -57,6 +57,12 @@ pub struct ObjectDesc {
     /// Sphere: radius, > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<Spanned<Finite>>,
+    /// Sphere: how its texture coordinates lie on it: the directions of `u = 0` and `u = ¼` on
+    /// the equator and of the pole `v = 0` (default `[[0, 0, 1], [-1, 0, 0], [0, 1, 0]]`: the
+    /// pole up, `u = ½` facing −z, as an environment map; Mitsuba's spheres are
+    /// `[[1, 0, 0], [0, 1, 0], [0, 0, 1]]` turned by their `to_world`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uv_axes: Option<Spanned<[Vector; 3]>>,
     /// Plane: a point on it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub point: Option<Spanned<Vector>>,
@@ -105,6 +111,7 @@ impl ObjectDesc {
             material: Spanned::new(0..0, material.to_string()),
             center: None,
             radius: None,
+            uv_axes: None,
             point: None,
             normal: None,
             vertices: None,

@@ -3,7 +3,7 @@
 //! | Mitsuba | lucent |
 //! | --- | --- |
 //! | `obj`, `ply` (`filename`, `face_normals`, `flip_normals`, `to_world`) | `mesh` (`file`, `smooth = false` for face normals, `flip_normals`, `transform`) |
-//! | `sphere` (`center`, `radius`, `to_world`) | `sphere`: `to_world · translate(center) · scale(radius)` must be a similarity |
+//! | `sphere` (`center`, `radius`, `to_world`) | `sphere`: `to_world · translate(center) · scale(radius)` must be a similarity; `uv_axes` its rotation, so that textures and tangents lie as in Mitsuba |
 //! | `rectangle`, `cube`, `disk` (`to_world`) | the same kinds with `transform`: Mitsuba's and lucent's canonical shapes agree (`[-1, 1]²` at z = 0 facing +z, `[-1, 1]³`, the unit disk at z = 0 facing +z) |
 //!
 //! A sphere's `flip_normals` is not read (lucent's spheres face out), with a warning.
@@ -85,6 +85,10 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
             }
             o.center = Some(Spanned::new(0..0, Vector(c)));
             o.radius = Some(Spanned::new(0..0, Finite(r)));
+            // Mitsuba's texture coordinates (and tangents): u from the object's +x about its
+            // +z, whatever the rotation.
+            let axes = [m.x_axis, m.y_axis, m.z_axis].map(|a| a.truncate().normalize().as_vec3());
+            o.uv_axes = Some(Spanned::new(0..0, axes.map(Vector)));
         }
         _ => place(&mut o)?,
     }

@@ -20,7 +20,7 @@ mod scattering;
 mod shading;
 
 pub use classic::Approximation;
-pub use scattering::{Part, Scattering, ScatteringSample, Side};
+pub use scattering::{Part, Scattering, ScatteringSample, Side, Terminator};
 pub use shading::{Geometry, facing};
 
 use std::sync::Arc;

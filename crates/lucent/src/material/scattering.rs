@@ -39,9 +39,54 @@ pub struct Part<'a> {
     pub ng: Vec3,
     /// Its BSDF, textures evaluated.
     pub bsdf: Bsdf<'a>,
+    /// For a normal- or bump-mapped part, the shadowing of its bumps (see
+    /// [`Terminator`]).
+    pub terminator: Option<Terminator>,
+}
+
+/// The shadowing a normal or bump map's unseen bumps cast on light arriving at grazing angles
+/// (Estevez et al., "A Microfacet-Based Shadowing Function to Solve the Bump Terminator
+/// Problem", Ray Tracing Gems 2019, as Mitsuba's `normalmap` and `bumpmap` apply it): the
+/// bumps are taken for microfacets of roughness `α² = min(tan²θ/8, 1)`, θ the perturbed
+/// normal's tilt from the surface's own shading normal, and a light direction at `θi` from that
+/// normal is weighted by their Smith masking `2/(1 + √(1 + α² tan²θi))`. Without it the
+/// shading ends in a hard line where the perturbed normal turns from the light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Terminator {
+    /// The shading normal the map perturbs.
+    pub base: Vec3,
+    /// `α²` of the bumps.
+    pub alpha2: f32,
+}
+
+impl Terminator {
+    /// The terminator of a normal perturbed from `base` to `n` (unit vectors).
+    pub fn new(base: Vec3, n: Vec3) -> Self {
+        let c = n.dot(base).clamp(-1.0, 1.0);
+        let tan2 = (1.0 - c * c).max(0.0) / (c * c).max(1e-12);
+        Self {
+            base,
+            alpha2: (0.125 * tan2).min(1.0),
+        }
+    }
+
+    /// The weight of light along unit direction `w`.
+    #[inline]
+    pub fn weight(&self, w: Vec3) -> f32 {
+        let c = w.dot(self.base);
+        let c2 = (c * c).max(1e-12);
+        let tan2 = (1.0 - c2).max(0.0) / c2;
+        2.0 / (1.0 + (1.0 + self.alpha2 * tan2).sqrt())
+    }
 }
 
 impl Part<'_> {
+    /// The terminator weight of light along `w` (1 without a map).
+    #[inline]
+    fn shadowing(&self, w: Vec3) -> f32 {
+        self.terminator.map_or(1.0, |t| t.weight(w))
+    }
+
     /// `w` in the frame, or `None` where the shading and the geometric normal put it on
     /// different sides (the no-leak rule of `material/shading.rs`).
     #[inline]
@@ -112,7 +157,7 @@ impl<'a> Scattering<'a> {
             side,
             out: ArrayVec::new(),
         };
-        r.surface(&material.surface, 1.0, geometry, false);
+        r.surface(&material.surface, 1.0, geometry, false, None);
         let total = r.out.iter().map(|p| p.weight).sum();
         Self {
             parts: r.out,
@@ -131,7 +176,7 @@ impl<'a> Scattering<'a> {
         let mut f = Rgb::BLACK;
         for p in &self.parts {
             if let Some(i) = p.local(wi) {
-                f += p.bsdf.eval(p.frame.to_local(wo), i, mode) * p.weight;
+                f += p.bsdf.eval(p.frame.to_local(wo), i, mode) * (p.weight * p.shadowing(wi));
             }
         }
         f
@@ -188,7 +233,7 @@ impl<'a> Scattering<'a> {
             // times W.
             return Some(ScatteringSample {
                 wi,
-                weight: s.weight * self.total,
+                weight: s.weight * (self.total * p.shadowing(wi)),
                 pdf: s.pdf * (p.weight / self.total),
                 delta: s.delta,
                 reflected,
@@ -231,8 +276,16 @@ impl<'a> Scattering<'a> {
 
 impl<'a> Resolve<'_, 'a> {
     /// Adds the parts of `surface` with `weight`, shading geometry `g`, the frame already
-    /// turned to the back when `flipped`.
-    fn surface(&mut self, surface: &'a Surface, weight: f32, g: Geometry, flipped: bool) {
+    /// turned to the back when `flipped`, the bumps of a map above shadowing it when
+    /// `terminator`.
+    fn surface(
+        &mut self,
+        surface: &'a Surface,
+        weight: f32,
+        g: Geometry,
+        flipped: bool,
+        terminator: Option<Terminator>,
+    ) {
         if weight.is_nan() || weight <= 0.0 {
             return;
         }
@@ -243,15 +296,15 @@ impl<'a> Resolve<'_, 'a> {
                 second,
             } => {
                 let t = w.eval_float(self.at, self.images).clamp(0.0, 1.0);
-                self.surface(first, weight * (1.0 - t), g, flipped);
-                self.surface(second, weight * t, g, flipped);
+                self.surface(first, weight * (1.0 - t), g, flipped, terminator);
+                self.surface(second, weight * t, g, flipped, terminator);
             }
             Surface::TwoSided { front, back } => {
                 if self.side == Side::Back && !flipped {
                     let g = Geometry { n: -g.n, ..g };
-                    self.surface(back, weight, g, true);
+                    self.surface(back, weight, g, true, terminator);
                 } else {
-                    self.surface(front, weight, g, flipped);
+                    self.surface(front, weight, g, flipped, terminator);
                 }
             }
             Surface::NormalMap {
@@ -259,9 +312,15 @@ impl<'a> Resolve<'_, 'a> {
                 strength,
                 inner,
             } => {
-                let texel = normals.eval(self.at, self.images);
-                let mapped = g.normal_mapped(texel, *strength);
-                self.surface(inner, weight, mapped, flipped);
+                // Normals are looked up at a point, as pbrt-v4 does: averaging a MIP level's
+                // normals flattens the bumps, and the shading is not linear in the normal.
+                let point = TexCoords {
+                    duv: [Vec2::ZERO; 2],
+                    ..*self.at
+                };
+                let texel = normals.eval(&point, self.images);
+                let (mapped, t) = self.perturbed(g, g.normal_mapped(texel, *strength));
+                self.surface(inner, weight, mapped, flipped, Some(t));
             }
             Surface::BumpMap {
                 height,
@@ -270,8 +329,8 @@ impl<'a> Resolve<'_, 'a> {
             } => {
                 let grad = self.height_gradient(height) * *scale;
                 let ng = if flipped { -self.ng } else { self.ng };
-                let bumped = g.bumped(grad, ng);
-                self.surface(inner, weight, bumped, flipped);
+                let (bumped, t) = self.perturbed(g, g.bumped(grad, ng));
+                self.surface(inner, weight, bumped, flipped, Some(t));
             }
             leaf => {
                 let Some(bsdf) = self.leaf(leaf) else { return };
@@ -290,14 +349,32 @@ impl<'a> Resolve<'_, 'a> {
                 if self.out.is_full() {
                     return;
                 }
+                let terminator = terminator.map(|t| Terminator {
+                    base: if flip { -t.base } else { t.base },
+                    ..t
+                });
                 self.out.push(Part {
                     weight,
                     frame,
                     ng,
                     bsdf,
+                    terminator,
                 });
             }
         }
+    }
+
+    /// A map's perturbed geometry `p` of `g` made safe as Mitsuba's `normalmap` and `bumpmap`
+    /// make it (after Schüssler et al. 2017): where the viewer would be on the other side of the
+    /// perturbed normal than of the shading normal, the tilt is mirrored (the normal turned by
+    /// half a turn about the shading normal); with the terminator shadowing of its bumps.
+    fn perturbed(&self, g: Geometry, p: Geometry) -> (Geometry, Terminator) {
+        let base = g.n;
+        let mut n = p.n;
+        if base.dot(self.wo) * n.dot(self.wo) <= 0.0 {
+            n = (base * (2.0 * n.dot(base)) - n).normalize_or(base);
+        }
+        (Geometry { n, ..p }, Terminator::new(base, n))
     }
 
     /// `(∂h/∂u, ∂h/∂v)` of a height texture at the hit, by central differences over a step of

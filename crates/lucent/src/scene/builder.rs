@@ -7,7 +7,7 @@ use crate::camera::Camera;
 use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
 use crate::material::Material;
 use crate::motion::Motion;
-use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, Transform, TriangleTest};
+use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, SphereMap, Transform, TriangleTest};
 use crate::texture::ImageTexture;
 use glam::Affine3A;
 use lucent_accel::{Aabb, AccelKind, WideTriangleBvh};
@@ -104,6 +104,7 @@ pub struct SceneBuilder {
     images: Vec<ImageTexture>,
     environment: Option<u32>,
     spheres: Vec<(Sphere, ObjectTag)>,
+    sphere_maps: Vec<SphereMap>,
     planes: Vec<(Plane, ObjectTag)>,
     meshes: Vec<Mesh>,
     instances: Vec<(u32, Affine3A, ObjectTag)>,
@@ -126,6 +127,7 @@ impl SceneBuilder {
             images: vec![],
             environment: None,
             spheres: vec![],
+            sphere_maps: vec![],
             planes: vec![],
             meshes: vec![],
             instances: vec![],
@@ -212,8 +214,14 @@ impl SceneBuilder {
 
     /// Adds a sphere; returns its object id.
     pub fn sphere(&mut self, s: Sphere, material: u32) -> u32 {
+        self.sphere_mapped(s, material, SphereMap::default())
+    }
+
+    /// Adds a sphere whose texture coordinates lie on it as `map` says; returns its object id.
+    pub fn sphere_mapped(&mut self, s: Sphere, material: u32, map: SphereMap) -> u32 {
         let tag = self.next_tag(material);
         self.spheres.push((s, tag));
+        self.sphere_maps.push(map);
         tag.object
     }
 
@@ -553,6 +561,7 @@ impl SceneBuilder {
             images: Arc::new(self.images),
             environment: self.environment,
             spheres: Arc::new(self.spheres),
+            sphere_maps: Arc::new(self.sphere_maps),
             planes: Arc::new(self.planes),
             meshes: Arc::new(meshes),
             instances: Arc::new(instances),

@@ -30,7 +30,7 @@ use crate::camera::Camera;
 use crate::light::{Emitters, Light};
 use crate::material::Material;
 use crate::shape::SurfaceHit;
-use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, TriangleTest};
+use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, SphereMap, TriangleTest};
 use crate::texture::{ImageTexture, TexCoords};
 use animation::{Animation, Moving};
 use lucent_accel::{Aabb, AccelInfo, AccelKind, AnyAccelerator, WideTriangleBvh};
@@ -168,6 +168,8 @@ pub struct Scene {
     /// `background`.
     pub environment: Option<u32>,
     spheres: Arc<Vec<(Sphere, ObjectTag)>>,
+    /// How each sphere's texture coordinates lie on it (parallel to `spheres`).
+    sphere_maps: Arc<Vec<SphereMap>>,
     planes: Arc<Vec<(Plane, ObjectTag)>>,
     meshes: Arc<Vec<MeshEntry>>,
     instances: Arc<Vec<(Instance, ObjectTag)>>,

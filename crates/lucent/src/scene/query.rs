@@ -407,7 +407,12 @@ impl Scene {
                 let (sphere, tag) = &self.spheres[i as usize];
                 let point = sphere.project_to_surface(ray.at(t));
                 let normal = sphere.normal_at(point);
-                let (dpdu, dpdv) = sphere.tangents(normal);
+                let map = self
+                    .sphere_maps
+                    .get(i as usize)
+                    .copied()
+                    .unwrap_or_default();
+                let (dpdu, dpdv) = map.tangents(normal, sphere.radius);
                 SurfaceHit {
                     dpdu,
                     dpdv,
@@ -416,7 +421,7 @@ impl Scene {
                     normal,
                     texture_coords: point,
                     shading_normal: normal,
-                    uv: Uv::LatLong,
+                    uv: Uv::Sphere(map),
                     color: Rgb::WHITE,
                     material: tag.material,
                     object: tag.object,

@@ -14,7 +14,7 @@ pub mod triangle;
 pub use instance::{Instance, Transform};
 pub use mesh::Mesh;
 pub use plane::Plane;
-pub use sphere::{Roots, Sphere};
+pub use sphere::{Roots, Sphere, SphereMap};
 pub use triangle::{TriangleHit, TriangleTest};
 
 use glam::Vec3;
@@ -75,10 +75,10 @@ pub struct SurfaceHit {
 pub enum Uv {
     /// These coordinates.
     At(glam::Vec2),
-    /// A sphere's latitude–longitude coordinates of the hit's normal: worked out only when an
-    /// image texture needs them (an `atan2` and an `acos` were a seventh of a camera ray's
-    /// whole query on the default scene, for nothing when the sphere has no image).
-    LatLong,
+    /// A sphere's longitude and latitude of the hit's normal in its [`SphereMap`]: worked out
+    /// only when a texture needs them (an `atan2` and an `acos` were a seventh of a camera
+    /// ray's whole query on the default scene, for nothing when the sphere has no image).
+    Sphere(SphereMap),
 }
 
 impl SurfaceHit {
@@ -87,7 +87,7 @@ impl SurfaceHit {
     pub fn uv(&self) -> glam::Vec2 {
         match self.uv {
             Uv::At(uv) => uv,
-            Uv::LatLong => crate::texture::image::latlong_uv(self.normal),
+            Uv::Sphere(map) => map.uv(self.normal),
         }
     }
 }

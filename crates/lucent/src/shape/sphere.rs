@@ -12,6 +12,69 @@ pub struct Sphere {
     pub radius: f32,
 }
 
+/// How a sphere's texture coordinates lie on it: `u` is the longitude about the pole `z`,
+/// measured from `x` towards `y` (`u = φ/2π`, wrapped to `[0, 1)`), and `v = θ/π` the angle
+/// from the pole. The three are unit vectors, `x` and `y` perpendicular to `z` and to each
+/// other (either handedness).
+///
+/// lucent's own spheres ([`SphereMap::LAT_LONG`]) have the pole `+y` and `u = ½` facing `−z`,
+/// the lat-long convention of environment maps ([`crate::texture::image::latlong_uv`]);
+/// Mitsuba's have the pole along their `to_world`'s z and `u = 0` along its x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereMap {
+    /// Where `u = 0` on the equator.
+    pub x: Vec3,
+    /// Where `u = ¼`.
+    pub y: Vec3,
+    /// The pole, `v = 0`.
+    pub z: Vec3,
+}
+
+impl Default for SphereMap {
+    fn default() -> Self {
+        Self::LAT_LONG
+    }
+}
+
+impl SphereMap {
+    /// lucent's lat-long layout: `u = ½ + atan2(n_x, −n_z)/2π`, `v = acos(n_y)/π`.
+    pub const LAT_LONG: SphereMap = SphereMap {
+        x: Vec3::Z,
+        y: Vec3::NEG_X,
+        z: Vec3::Y,
+    };
+
+    /// The texture coordinates of the point of unit normal `n`.
+    pub fn uv(&self, n: Vec3) -> glam::Vec2 {
+        let phi = n.dot(self.y).atan2(n.dot(self.x));
+        let u = phi / std::f32::consts::TAU;
+        let u = if u < 0.0 { u + 1.0 } else { u };
+        let v = n.dot(self.z).clamp(-1.0, 1.0).acos() / std::f32::consts::PI;
+        glam::Vec2::new(u, v)
+    }
+
+    /// `∂p/∂u` and `∂p/∂v` at the point of unit normal `n` on a sphere of `radius`: with
+    /// `n = sin θ (cos φ x + sin φ y) + cos θ z`, `∂p/∂u = 2πr·sin θ·(−sin φ x + cos φ y)` and
+    /// `∂p/∂v = πr·(cos θ (cos φ x + sin φ y) − sin θ z)`, worked out from `n`'s components
+    /// without trigonometry. At the poles, where longitude is undefined, any tangent pair
+    /// perpendicular to `n` stands in.
+    pub fn tangents(&self, n: Vec3, radius: f32) -> (Vec3, Vec3) {
+        let (a, b, c) = (n.dot(self.x), n.dot(self.y), n.dot(self.z));
+        let s = (a * a + b * b).sqrt();
+        if s < 1e-6 {
+            let (t, u) = n.any_orthonormal_pair();
+            return (
+                t * (std::f32::consts::TAU * radius),
+                u * (std::f32::consts::PI * radius),
+            );
+        }
+        let dpdu = (self.y * a - self.x * b) * (std::f32::consts::TAU * radius);
+        let dpdv =
+            ((self.x * a + self.y * b) * (c / s) - self.z * s) * (std::f32::consts::PI * radius);
+        (dpdu, dpdv)
+    }
+}
+
 /// The real roots of the ray–sphere quadratic, smallest first.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Roots {
@@ -74,26 +137,6 @@ impl Sphere {
         (p - self.center).normalize()
     }
 
-    /// `∂p/∂u` and `∂p/∂v` at the point of unit normal `n`, for the lat-long coordinates of
-    /// [`crate::texture::image::latlong_uv`] (`u = ½ + atan2(x, −z)/2π`, `v = acos(y)/π`):
-    /// `∂p/∂u = 2πr·(−n_z, 0, n_x)` and `∂p/∂v = πr·(n_y n_x/s, −s, n_y n_z/s)` with
-    /// `s = sin θ = √(n_x² + n_z²)`. At the poles, where longitude is undefined, any tangent
-    /// pair perpendicular to `n` stands in.
-    pub fn tangents(&self, n: Vec3) -> (Vec3, Vec3) {
-        let s = (n.x * n.x + n.z * n.z).sqrt();
-        if s < 1e-6 {
-            let (a, b) = n.any_orthonormal_pair();
-            return (
-                a * (std::f32::consts::TAU * self.radius),
-                b * (std::f32::consts::PI * self.radius),
-            );
-        }
-        let r = self.radius;
-        let dpdu = Vec3::new(-n.z, 0.0, n.x) * (std::f32::consts::TAU * r);
-        let dpdv = Vec3::new(n.y * n.x / s, -s, n.y * n.z / s) * (std::f32::consts::PI * r);
-        (dpdu, dpdv)
-    }
-
     /// `p` moved radially onto the surface, which removes most of the rounding error of `o + t·d`.
     pub fn project_to_surface(&self, p: Vec3) -> Vec3 {
         let d = p - self.center;
@@ -114,39 +157,58 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_tangents_are_the_derivatives_of_the_lat_long_map() {
+    fn the_lat_long_map_is_the_environments() {
+        for n in [Vec3::new(0.3, 0.5, -0.81), Vec3::new(-0.7, -0.2, 0.68)] {
+            let n = n.normalize();
+            let want = crate::texture::image::latlong_uv(n);
+            assert!((SphereMap::LAT_LONG.uv(n) - want).length() < 1e-5, "{n}");
+        }
+    }
+
+    #[test]
+    fn the_tangents_are_the_derivatives_of_the_map() {
         // Moving along ∂p/∂u by a small step moves u by that step, and v not; likewise for v.
         let s = Sphere {
             center: Vec3::new(1.0, 2.0, 3.0),
             radius: 2.0,
         };
-        for n in [
-            Vec3::new(0.3, 0.5, -0.81),
-            Vec3::new(-0.7, -0.2, 0.68),
-            Vec3::new(0.1, 0.9, 0.42),
-        ] {
-            let n = n.normalize();
-            let (dpdu, dpdv) = s.tangents(n);
-            let uv = crate::texture::image::latlong_uv(n);
-            let h = 1e-3;
-            for (d, du, dv) in [(dpdu, h, 0.0), (dpdv, 0.0, h)] {
-                let q = s.center + n * s.radius + d * h;
-                let moved = crate::texture::image::latlong_uv(s.normal_at(q));
-                assert!(
-                    ((moved.x - uv.x) - du).abs() < 2e-5,
-                    "{n}: du {}",
-                    moved.x - uv.x
-                );
-                assert!(
-                    ((moved.y - uv.y) - dv).abs() < 2e-5,
-                    "{n}: dv {}",
-                    moved.y - uv.y
-                );
+        let mitsuba = SphereMap {
+            x: Vec3::X,
+            y: Vec3::Y,
+            z: Vec3::Z,
+        };
+        for map in [SphereMap::LAT_LONG, mitsuba] {
+            for n in [
+                Vec3::new(0.3, 0.5, -0.81),
+                Vec3::new(-0.7, -0.2, 0.68),
+                Vec3::new(0.1, 0.9, 0.42),
+            ] {
+                let n = n.normalize();
+                let (dpdu, dpdv) = map.tangents(n, s.radius);
+                let uv = map.uv(n);
+                let h = 1e-3;
+                for (d, du, dv) in [(dpdu, h, 0.0), (dpdv, 0.0, h)] {
+                    let q = s.center + n * s.radius + d * h;
+                    let moved = map.uv(s.normal_at(q));
+                    assert!(
+                        ((moved.x - uv.x) - du).abs() < 2e-5,
+                        "{n}: du {}",
+                        moved.x - uv.x
+                    );
+                    assert!(
+                        ((moved.y - uv.y) - dv).abs() < 2e-5,
+                        "{n}: dv {}",
+                        moved.y - uv.y
+                    );
+                }
+                assert!(dpdu.dot(n).abs() < 1e-5 && dpdv.dot(n).abs() < 1e-5);
             }
-            assert!(dpdu.dot(n).abs() < 1e-5 && dpdv.dot(n).abs() < 1e-5);
+            let (a, b) = map.tangents(map.z, s.radius);
+            assert!(a.is_finite() && b.is_finite() && a.dot(map.z).abs() < 1e-5);
         }
-        let (a, b) = s.tangents(Vec3::Y);
-        assert!(a.is_finite() && b.is_finite() && a.dot(Vec3::Y).abs() < 1e-6);
+        // Mitsuba's sphere: u = 0 along +x, u = ¼ along +y, v = 0 at +z.
+        assert!((mitsuba.uv(Vec3::Y) - glam::Vec2::new(0.25, 0.5)).length() < 1e-6);
+        assert!(mitsuba.uv(Vec3::Z).y.abs() < 1e-6);
     }
 
     fn unit_sphere() -> Sphere {
