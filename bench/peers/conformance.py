@@ -257,6 +257,46 @@ CASES["twosided"] = (
     '<bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.2, 0.1"/></bsdf></bsdf>',
 )
 
+# The principled BSDFs at several settings: a dielectric base, a brushed metal, every layer at
+# once (clearcoat, sheen, tints, flatness), partly transmissive, textured, and the thin sheet.
+CASES["principled"] = (
+    BALL,
+    '<bsdf type="principled"><rgb name="base_color" value="0.8, 0.3, 0.2"/></bsdf>',
+)
+CASES["principled-metal-anisotropic"] = (
+    BALL,
+    '<bsdf type="principled"><rgb name="base_color" value="0.9, 0.7, 0.3"/>'
+    '<float name="metallic" value="1"/><float name="roughness" value="0.35"/>'
+    '<float name="anisotropic" value="0.6"/></bsdf>',
+)
+CASES["principled-layers"] = (
+    BALL,
+    '<bsdf type="principled"><rgb name="base_color" value="0.2, 0.45, 0.7"/>'
+    '<float name="roughness" value="0.4"/><float name="metallic" value="0.3"/>'
+    '<float name="spec_tint" value="0.5"/><float name="sheen" value="1"/>'
+    '<float name="sheen_tint" value="0.5"/><float name="flatness" value="0.5"/>'
+    '<float name="clearcoat" value="1"/><float name="clearcoat_gloss" value="0.7"/>'
+    '<float name="specular" value="0.7"/></bsdf>',
+)
+CASES["principled-transmissive"] = (
+    BALL,
+    '<bsdf type="principled"><rgb name="base_color" value="0.9, 0.8, 0.6"/>'
+    '<float name="spec_trans" value="0.7"/><float name="roughness" value="0.3"/>'
+    '<float name="eta" value="1.45"/></bsdf>',
+)
+CASES["principled-textured"] = (
+    PLANE,
+    f'<bsdf type="principled">{bitmap("base_color", "checker.png")}'
+    f'{bitmap("roughness", "checker.png", raw=True)}<float name="metallic" value="0.5"/></bsdf>',
+)
+CASES["principledthin"] = (
+    PLANE,
+    '<bsdf type="principledthin"><rgb name="base_color" value="0.7, 0.5, 0.3"/>'
+    '<float name="roughness" value="0.3"/><float name="spec_trans" value="0.4"/>'
+    '<float name="diff_trans" value="0.8"/><float name="sheen" value="0.5"/>'
+    '<float name="eta" value="1.4"/></bsdf>',
+)
+
 
 # The cases lit otherwise than by the sky and the spherical sun: smooth mirrors and glass (a
 # small sun seen in a mirror, or focused by glass onto the floor, is found only by chance;

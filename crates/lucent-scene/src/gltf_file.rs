@@ -19,21 +19,14 @@
 //! - **Meshes**: one object per (node, triangle primitive), placed by the node's world matrix;
 //!   a mesh instanced on several nodes gives several objects with the same part. Triangle lists,
 //!   strips and fans are read, indexed (8, 16, 32 bits) or not; `POSITION`, `NORMAL`,
-//!   `TEXCOORD_0` (glTF's convention, kept) and `COLOR_0` (alpha dropped); sparse accessors.
+//!   `TANGENT`, `TEXCOORD_0` (glTF's convention, kept) and `COLOR_0` (alpha dropped); sparse
+//!   accessors.
 //!   Points and lines are skipped with a warning.
 //! - **Materials**: named `gltf:<name or index>`, made unique; `gltf:default` (diffuse grey
-//!   0.8) for primitives without one. Metallic-roughness maps to lucent's kinds, tried in order:
-//!
-//!   | glTF factors | lucent |
-//!   | --- | --- |
-//!   | metallic ≥ 0.5 | `conductor` (roughness ≤ 0.05) or `roughconductor`; `specular` = base colour, no `eta`/`k`: an ideal reflector tinted by it |
-//!   | transmission ≥ 0.5 | `dielectric` (roughness ≤ 0.05) or `roughdielectric`; `ior`, `transmittance` = base colour |
-//!   | roughness ≥ 0.5 | `diffuse`; `reflectance` = base colour, or the base colour texture's file |
-//!   | otherwise | `plastic`; `reflectance`, `ior`, and `roughness` unless roughness ≤ 0.05 |
-//!
-//!   `roughness` (GGX α) = glTF roughness², `ior` from KHR_materials_ior (default 1.5); colours
-//!   are linear in both and kept; emissive factor × KHR_materials_emissive_strength →
-//!   `emission`; `doubleSided` → `two_sided`.
+//!   0.8) for primitives without one. Each becomes lucent's `pbr` kind, glTF's own BRDF, with
+//!   every texture slot (base colour, metallic-roughness, normal, emissive, alpha `MASK` and
+//!   `BLEND` as opacity) and the `KHR_materials_*` layers: the table in `gltf_file/material.rs`.
+//!   A primitive whose material has a normal map keeps its `TANGENT`s, or gets MikkTSpace's.
 //! - **Lights** (KHR_lights_punctual): photometric to radiometric by [`LUMENS_PER_WATT`]; at
 //!   the node's origin, shining down its −z; quadratic falloff for point and spot lights; spot
 //!   cone angles → `cutoff` (outer) and `cutoff_start` (inner) in degrees.
@@ -42,8 +35,8 @@
 //!   image to [`IMAGE_HEIGHT`] pixels high and as wide as the ratio says.
 //!
 //! Not rendered (each gives a warning naming the file): orthographic cameras, skins, morph
-//! targets, animations, alpha blending and masking, textures other than the base colour's,
-//! images embedded in the file, light `range`, extensions other than those above. Nodes whose
+//! targets, animations, images embedded in the file, texture coordinates other than
+//! `TEXCOORD_0`, light `range`, extensions other than those above. Nodes whose
 //! world matrix is singular are skipped with a warning.
 //!
 //! Safety: every URI naming a file goes through [`crate::paths::resolve`], so `--sandbox`
@@ -88,11 +81,17 @@ pub const IMAGE_HEIGHT: u32 = 600;
 
 /// The extensions read (others listed in `extensionsUsed` give a warning; others listed in
 /// `extensionsRequired` make the file unreadable).
-const SUPPORTED_EXTENSIONS: [&str; 4] = [
+const SUPPORTED_EXTENSIONS: [&str; 10] = [
     "KHR_lights_punctual",
     "KHR_materials_transmission",
     "KHR_materials_ior",
     "KHR_materials_emissive_strength",
+    "KHR_materials_specular",
+    "KHR_materials_volume",
+    "KHR_materials_clearcoat",
+    "KHR_materials_sheen",
+    "KHR_materials_anisotropy",
+    "KHR_texture_transform",
 ];
 
 /// The scene of a .gltf/.glb file as a description: camera, lights, materials, and one mesh

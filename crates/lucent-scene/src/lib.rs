@@ -20,6 +20,7 @@ pub mod mtl;
 pub mod obj;
 pub mod paths;
 pub mod ply;
+pub mod tangents;
 
 pub use build::{Loaded, build};
 pub use desc::SceneDesc;

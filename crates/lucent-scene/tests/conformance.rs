@@ -20,10 +20,14 @@ use lucent_scene::{LoadOptions, SceneFile, Spanned};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
-/// Samples per pixel lucent renders each case with: 256, and 1024 for rough glass, whose light
-/// refracted from the small sun is the noisiest to find.
+/// Samples per pixel lucent renders each case with: 256, and 1024 for rough glass and the
+/// transmissive principled cases, whose light refracted from the small sun is the noisiest to
+/// find.
 fn spp(name: &str) -> u32 {
-    if name.starts_with("roughdielectric") {
+    if name.starts_with("roughdielectric")
+        || name == "principled-transmissive"
+        || name == "principledthin"
+    {
         1024
     } else {
         256

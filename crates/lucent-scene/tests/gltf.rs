@@ -466,7 +466,7 @@ fn materials_lights_and_camera_are_described() {
     let pos = a.positions(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
     let s = std::f32::consts::FRAC_1_SQRT_2;
     let rest = format!(
-        r#""extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_texture_transform"],
+        r#""extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_iridescence"],
   "extensions": {{"KHR_lights_punctual": {{"lights": [
     {{"type": "point", "color": [1, 0.5, 0.25], "intensity": 683}},
     {{"type": "spot", "intensity": 1366, "spot": {{"innerConeAngle": 0.25, "outerConeAngle": 0.5}}}}
@@ -514,16 +514,17 @@ fn materials_lights_and_camera_are_described() {
         ["gltf:Wood", "gltf:Glass", "gltf:Decal"],
         "only the used ones"
     );
-    assert_eq!(materials[0].kind(), MaterialKind::Diffuse);
+    assert!(materials.iter().all(|m| m.kind() == MaterialKind::Pbr));
+    let mut wood = lucent_scene::desc::ImageMapDesc::new("wood grain.png");
+    wood.encoding = Some(lucent_scene::desc::texture::Encoding::Srgb);
     assert_eq!(
-        materials[0].reflectance,
-        Some(lucent_scene::desc::TextureDesc::Image(
-            lucent_scene::desc::ImageMapDesc::new("wood grain.png")
-        ))
+        materials[0].base_color,
+        Some(lucent_scene::desc::TextureDesc::Image(wood))
     );
-    assert_eq!(materials[1].kind(), MaterialKind::RoughDielectric);
+    assert!(materials[1].transmission.is_some());
+    // An embedded image is not extracted: the factor alone.
     assert_eq!(
-        materials[2].reflectance,
+        materials[2].base_color,
         Some(lucent_scene::desc::TextureDesc::Solid(lucent::Rgb::gray(
             0.5
         )))
@@ -590,10 +591,10 @@ fn materials_lights_and_camera_are_described() {
     let shown = file.display().to_string();
     let w = &imported.warnings;
     for expected in [
-        "extension KHR_texture_transform is not supported; ignored",
+        "extension KHR_materials_iridescence is not supported; ignored",
         "mesh 0 primitive 3 is drawn as Lines, not triangles; skipped",
         "node 4: camera 1 is orthographic, which lucent does not have; ignored",
-        "material 2 (`Decal`): image 1 is embedded in the glTF file and is not extracted; baseColorFactor is used",
+        "material 2 (`Decal`): baseColorTexture: image 1 is embedded in the file and is not extracted; the factor alone is used",
     ] {
         assert!(
             w.contains(&format!("{shown}: {expected}")),

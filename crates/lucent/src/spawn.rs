@@ -118,6 +118,7 @@ mod tests {
             error: Vec3::ZERO,
             dpdu: Vec3::X,
             dpdv: Vec3::Z,
+            tangent: None,
         };
         let (out, leaving) = spawn_ray(&hit, Vec3::new(1.0, 1.0, 0.0).normalize());
         assert!(out.origin.y > 1.0 && leaving.outward);

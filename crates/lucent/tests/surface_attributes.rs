@@ -4,7 +4,7 @@
 mod common;
 
 use common::any_camera;
-use glam::{Affine3A, Vec2, Vec3};
+use glam::{Affine3A, Vec2, Vec3, Vec4};
 use lucent::Rgb;
 use lucent::accel::{AccelKind, Ray, TraversalStats};
 use lucent::integrator::{Integrator, RayStats, Whitted};
@@ -34,6 +34,11 @@ fn triangle() -> Mesh {
             Rgb::new(1.0, 0.0, 0.0),
             Rgb::new(0.0, 1.0, 0.0),
             Rgb::new(0.0, 0.0, 1.0),
+        ],
+        tangents: vec![
+            Vec4::new(1.0, 0.0, 0.0, 1.0),
+            Vec4::new(0.0, 1.0, 0.0, 1.0),
+            Vec4::new(1.0, 0.0, 0.0, 1.0),
         ],
     }
 }
@@ -104,6 +109,41 @@ fn shading_normals_follow_the_instance_transform() {
         "{:?} vs {want:?}",
         hit.shading_normal
     );
+}
+
+#[test]
+fn mesh_tangents_are_interpolated_and_a_mirror_turns_their_handedness() {
+    let scene = scene_with(
+        triangle(),
+        Material::diffuse(Rgb::WHITE),
+        AccelKind::Wide,
+        Affine3A::IDENTITY,
+    );
+    // Weights 0.25, 0.25, 0.5: 0.75 of +x, 0.25 of +y.
+    let t = hit_at(&scene, 0.25, 0.5).tangent.unwrap();
+    assert!((t - Vec4::new(0.75, 0.25, 0.0, 1.0)).length() < 1e-5, "{t}");
+    // Mirrored in x (and seen from the same side): the tangent mirrors, the handedness turns.
+    let mirror = Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+    let scene = scene_with(
+        triangle(),
+        Material::diffuse(Rgb::WHITE),
+        AccelKind::Wide,
+        mirror,
+    );
+    let t = hit_at(&scene, -0.25, 0.5).tangent.unwrap();
+    assert!(
+        (t - Vec4::new(-0.75, 0.25, 0.0, -1.0)).length() < 1e-5,
+        "{t}"
+    );
+    let mut flat = triangle();
+    flat.tangents.clear();
+    let scene = scene_with(
+        flat,
+        Material::diffuse(Rgb::WHITE),
+        AccelKind::Wide,
+        Affine3A::IDENTITY,
+    );
+    assert_eq!(hit_at(&scene, 0.25, 0.5).tangent, None);
 }
 
 #[test]

@@ -8,8 +8,12 @@ use super::{Context, refuse_keys, span};
 use crate::desc::{Color, Finite, MaterialDesc, MaterialKind, TextureDesc};
 use crate::error::LoadError;
 use lucent::Rgb;
+use lucent::bsdf::Principled;
 use lucent::bsdf::{Distribution, Microfacet, RoughCoat};
-use lucent::material::{Approximation, Material, Roughness, Surface, metals};
+use lucent::material::{
+    Approximation, GltfMaps, Material, PrincipledMaps, PrincipledThinMaps, Roughness, Surface,
+    metals,
+};
 use lucent::texture::Texture;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -65,6 +69,51 @@ fn takes(kind: MaterialKind) -> &'static [&'static str] {
             "distribution",
         ],
         MaterialKind::Blend => &["materials", "weight"],
+        MaterialKind::Principled => &[
+            "base_color",
+            "roughness",
+            "anisotropic",
+            "metallic",
+            "spec_trans",
+            "spec_tint",
+            "sheen",
+            "sheen_tint",
+            "flatness",
+            "clearcoat",
+            "clearcoat_gloss",
+            "ior",
+            "specular",
+        ],
+        MaterialKind::PrincipledThin => &[
+            "base_color",
+            "roughness",
+            "anisotropic",
+            "spec_trans",
+            "diff_trans",
+            "spec_tint",
+            "sheen",
+            "sheen_tint",
+            "flatness",
+            "ior",
+        ],
+        MaterialKind::Pbr => &[
+            "base_color",
+            "metallic",
+            "roughness",
+            "ior",
+            "specular",
+            "specular_color",
+            "transmission",
+            "volume",
+            "clearcoat",
+            "clearcoat_roughness",
+            "clearcoat_normal_map",
+            "clearcoat_normal_scale",
+            "sheen_color",
+            "sheen_roughness",
+            "anisotropy",
+            "anisotropy_rotation",
+        ],
     }
 }
 
@@ -245,6 +294,27 @@ fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(), LoadError>
         ("nonlinear", at(d.nonlinear.is_some())),
         ("materials", span(&d.materials)),
         ("weight", span(&d.weight)),
+        ("base_color", at(d.base_color.is_some())),
+        ("metallic", span(&d.metallic)),
+        ("anisotropic", span(&d.anisotropic)),
+        ("spec_trans", span(&d.spec_trans)),
+        ("spec_tint", span(&d.spec_tint)),
+        ("sheen", span(&d.sheen)),
+        ("sheen_tint", span(&d.sheen_tint)),
+        ("flatness", span(&d.flatness)),
+        ("clearcoat", span(&d.clearcoat)),
+        ("clearcoat_gloss", span(&d.clearcoat_gloss)),
+        ("diff_trans", span(&d.diff_trans)),
+        ("specular_color", at(d.specular_color.is_some())),
+        ("transmission", span(&d.transmission)),
+        ("volume", at(d.volume.is_some())),
+        ("clearcoat_roughness", span(&d.clearcoat_roughness)),
+        ("clearcoat_normal_map", span(&d.clearcoat_normal_map)),
+        ("clearcoat_normal_scale", span(&d.clearcoat_normal_scale)),
+        ("sheen_color", at(d.sheen_color.is_some())),
+        ("sheen_roughness", span(&d.sheen_roughness)),
+        ("anisotropy", span(&d.anisotropy)),
+        ("anisotropy_rotation", span(&d.anisotropy_rotation)),
     ];
     let takes = takes(kind);
     let others: Vec<_> = keys
@@ -256,6 +326,14 @@ fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(), LoadError>
         return Err(ctx.source.error(
             d.normal_scale.as_ref().map_or(table.clone(), Spanned::span),
             "`normal_scale` needs a `normal_map`",
+        ));
+    }
+    if d.clearcoat_normal_scale.is_some() && d.clearcoat_normal_map.is_none() {
+        return Err(ctx.source.error(
+            d.clearcoat_normal_scale
+                .as_ref()
+                .map_or(table.clone(), Spanned::span),
+            "`clearcoat_normal_scale` needs a `clearcoat_normal_map`",
         ));
     }
     if d.bump_scale.is_some() && d.bump_map.is_none() {
@@ -441,7 +519,152 @@ fn leaf(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Surface, LoadErr
             };
             Surface::plastic_with(diffuse, eta, specular, d.nonlinear.unwrap_or(false), coat)
         }
+        MaterialKind::Principled => Surface::Principled(Box::new(principled(m, ctx)?)),
+        MaterialKind::PrincipledThin => Surface::PrincipledThin(Box::new(principled_thin(m, ctx)?)),
+        MaterialKind::Pbr => Surface::Gltf(Box::new(pbr(m, ctx)?)),
         MaterialKind::Blend => unreachable!("blends are built from their materials"),
+    })
+}
+
+/// A texture in `[0, max]` (its constant value checked), or `default`.
+fn bounded(
+    ctx: &mut Context,
+    v: &Option<Spanned<TextureDesc>>,
+    what: &str,
+    max: f32,
+    default: f32,
+) -> Result<Texture, LoadError> {
+    let Some(v) = v else {
+        return Ok(Texture::from(default));
+    };
+    if let TextureDesc::Solid(c) = v.get_ref()
+        && [c.r, c.g, c.b].iter().any(|x| !(0.0..=max).contains(x))
+    {
+        return Err(ctx
+            .source
+            .error(v.span(), format!("{what} must lie in [0, {max}]")));
+    }
+    ctx.texture(v.get_ref(), v.span(), Slot::Data)
+}
+
+/// A colour texture, or a grey `default`.
+fn color(
+    ctx: &mut Context,
+    table: &Range<usize>,
+    v: &Option<TextureDesc>,
+    default: f32,
+) -> Result<Texture, LoadError> {
+    match v {
+        Some(t) => ctx.texture(t, table.clone(), Slot::Color),
+        None => Ok(Texture::from(default)),
+    }
+}
+
+/// The principled BSDF's index: `ior`, or Burley's mapping of `specular` (a number in
+/// `[0, 1]`), or Mitsuba's default (specular 0.5).
+fn principled_eta(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<f32, LoadError> {
+    let d = m.get_ref();
+    match (&d.ior, &d.specular) {
+        (Some(_), Some(_)) => Err(ctx.source.error(
+            m.span(),
+            "give a principled material either `ior` or `specular`, not both",
+        )),
+        (Some(_), None) => positive(ctx, &d.ior, "ior", 1.5),
+        (None, Some(TextureDesc::Solid(c)))
+            if c.r == c.g && c.g == c.b && c.r > 0.0 && c.r <= 1.0 =>
+        {
+            Ok(lucent::bsdf::principled::eta_of_specular(c.r))
+        }
+        (None, Some(_)) => Err(ctx.source.error(
+            m.span(),
+            "a principled material's `specular` is one number in (0, 1] (it sets the index)",
+        )),
+        (None, None) => Ok(Principled::default().eta),
+    }
+}
+
+/// A `principled` material's parameters (Mitsuba's defaults where absent).
+fn principled(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<PrincipledMaps, LoadError> {
+    let d = m.get_ref();
+    Ok(PrincipledMaps {
+        base_color: color(ctx, &m.span(), &d.base_color, 0.5)?,
+        roughness: bounded(ctx, &d.roughness, "roughness", 1.0, 0.5)?,
+        anisotropic: bounded(ctx, &d.anisotropic, "anisotropic", 1.0, 0.0)?,
+        metallic: bounded(ctx, &d.metallic, "metallic", 1.0, 0.0)?,
+        spec_trans: bounded(ctx, &d.spec_trans, "spec_trans", 1.0, 0.0)?,
+        spec_tint: bounded(ctx, &d.spec_tint, "spec_tint", 1.0, 0.0)?,
+        sheen: bounded(ctx, &d.sheen, "sheen", 1.0, 0.0)?,
+        sheen_tint: bounded(ctx, &d.sheen_tint, "sheen_tint", 1.0, 0.0)?,
+        flatness: bounded(ctx, &d.flatness, "flatness", 1.0, 0.0)?,
+        clearcoat: bounded(ctx, &d.clearcoat, "clearcoat", 1.0, 0.0)?,
+        clearcoat_gloss: bounded(ctx, &d.clearcoat_gloss, "clearcoat_gloss", 1.0, 0.0)?,
+        eta: principled_eta(m, ctx)?,
+    })
+}
+
+/// A `principledthin` material's parameters (Mitsuba's defaults where absent).
+fn principled_thin(
+    m: &Spanned<MaterialDesc>,
+    ctx: &mut Context,
+) -> Result<PrincipledThinMaps, LoadError> {
+    let d = m.get_ref();
+    Ok(PrincipledThinMaps {
+        base_color: color(ctx, &m.span(), &d.base_color, 0.5)?,
+        roughness: bounded(ctx, &d.roughness, "roughness", 1.0, 0.5)?,
+        anisotropic: bounded(ctx, &d.anisotropic, "anisotropic", 1.0, 0.0)?,
+        spec_trans: bounded(ctx, &d.spec_trans, "spec_trans", 1.0, 0.0)?,
+        diff_trans: bounded(ctx, &d.diff_trans, "diff_trans", 2.0, 0.0)?,
+        spec_tint: bounded(ctx, &d.spec_tint, "spec_tint", 1.0, 0.0)?,
+        sheen: bounded(ctx, &d.sheen, "sheen", 1.0, 0.0)?,
+        sheen_tint: bounded(ctx, &d.sheen_tint, "sheen_tint", 1.0, 0.0)?,
+        flatness: bounded(ctx, &d.flatness, "flatness", 1.0, 0.0)?,
+        eta: match &d.ior {
+            Some(_) => Texture::from(positive(ctx, &d.ior, "ior", 1.5)?),
+            None => PrincipledThinMaps::default().eta,
+        },
+    })
+}
+
+/// A `pbr` (glTF metallic-roughness) material's parameters, glTF's defaults where absent.
+fn pbr(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<GltfMaps, LoadError> {
+    let d = m.get_ref();
+    let table = m.span();
+    let clearcoat_normals = match &d.clearcoat_normal_map {
+        Some(n) => Some((
+            ctx.texture(n.get_ref(), n.span(), Slot::Data)?,
+            d.clearcoat_normal_scale
+                .as_ref()
+                .map_or(1.0, |s| s.get_ref().0),
+        )),
+        None => None,
+    };
+    let specular = match &d.specular {
+        Some(t) => ctx.texture(t, table.clone(), Slot::Data)?,
+        None => Texture::from(1.0),
+    };
+    let sheen_color = color(ctx, &table, &d.sheen_color, 0.0)?;
+    let sheen_albedo =
+        (sheen_color.constant().is_none_or(|c| !c.is_black())).then(|| ctx.sheen_albedo());
+    Ok(GltfMaps {
+        base_color: color(ctx, &table, &d.base_color, 1.0)?,
+        metallic: bounded(ctx, &d.metallic, "metallic", 1.0, 1.0)?,
+        roughness: bounded(ctx, &d.roughness, "roughness", 1.0, 1.0)?,
+        ior: positive(ctx, &d.ior, "ior", 1.5)?,
+        specular,
+        specular_color: color(ctx, &table, &d.specular_color, 1.0)?,
+        transmission: bounded(ctx, &d.transmission, "transmission", 1.0, 0.0)?,
+        volume: d.volume.unwrap_or(false),
+        clearcoat: bounded(ctx, &d.clearcoat, "clearcoat", 1.0, 0.0)?,
+        clearcoat_roughness: bounded(ctx, &d.clearcoat_roughness, "clearcoat_roughness", 1.0, 0.0)?,
+        clearcoat_normals,
+        sheen_color,
+        sheen_roughness: bounded(ctx, &d.sheen_roughness, "sheen_roughness", 1.0, 0.0)?,
+        sheen_albedo,
+        anisotropy: bounded(ctx, &d.anisotropy, "anisotropy", 1.0, 0.0)?,
+        anisotropy_rotation: d
+            .anisotropy_rotation
+            .as_ref()
+            .map_or(0.0, |r| r.get_ref().0.to_radians()),
     })
 }
 

@@ -82,9 +82,17 @@ pub struct Context<'a> {
     images: HashMap<(PathBuf, [u32; 3], Encoding), u32>,
     /// Rough coats already integrated, by (distribution, α, η) bits.
     pub coats: HashMap<(u8, u32, u32), std::sync::Arc<lucent::bsdf::RoughCoat>>,
+    sheen_albedo: Option<std::sync::Arc<lucent::bsdf::SheenAlbedo>>,
 }
 
 impl Context<'_> {
+    /// The sheen's albedo table, tabulated once for every material with sheen.
+    pub fn sheen_albedo(&mut self) -> std::sync::Arc<lucent::bsdf::SheenAlbedo> {
+        self.sheen_albedo
+            .get_or_insert_with(|| std::sync::Arc::new(lucent::bsdf::SheenAlbedo::new()))
+            .clone()
+    }
+
     /// Resolves a file name from the scene (relative to its folder, within `--sandbox`), or an
     /// error at `span`.
     pub fn path(&self, name: &str, span: Range<usize>) -> Result<PathBuf, LoadError> {
@@ -206,6 +214,7 @@ pub fn build_with_files(
         mesh_files: files,
         images: HashMap::new(),
         coats: HashMap::new(),
+        sheen_albedo: None,
     };
     ctx.inputs.add(source.text.as_bytes());
 

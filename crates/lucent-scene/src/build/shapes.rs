@@ -28,6 +28,7 @@ pub fn rectangle() -> Mesh {
         normals: vec![Vec3::Z; 4],
         uvs,
         colors: vec![],
+        tangents: vec![],
     }
 }
 

@@ -48,6 +48,10 @@ impl Context<'_> {
                 b: Box::new(self.texture(b, span.clone(), slot)?),
                 t: Box::new(self.texture(t, span, Slot::Data)?),
             },
+            TextureDesc::Step(t, cutoff) => Texture::Step {
+                value: Box::new(self.texture(t, span, slot)?),
+                cutoff: *cutoff,
+            },
         })
     }
 

@@ -33,6 +33,19 @@ pub enum MaterialKind {
     RoughPlastic,
     /// Two other materials' surfaces blended: `materials = ["a", "b"]`, `weight` (of `b`).
     Blend,
+    /// The Disney principled BSDF (Mitsuba's `principled`): `base_color`, `roughness`,
+    /// `anisotropic`, `metallic`, `spec_trans`, `spec_tint`, `sheen`, `sheen_tint`,
+    /// `flatness`, `clearcoat`, `clearcoat_gloss`, and `ior` or `specular` (a number).
+    Principled,
+    /// The thin-sheet Disney BSDF (Mitsuba's `principledthin`): `base_color`, `roughness`,
+    /// `anisotropic`, `spec_trans`, `diff_trans`, `spec_tint`, `sheen`, `sheen_tint`,
+    /// `flatness`, `ior`.
+    PrincipledThin,
+    /// glTF 2.0's metallic-roughness material: `base_color`, `metallic`, `roughness`, `ior`,
+    /// `specular`, `specular_color`, `transmission`, `volume`, `clearcoat`,
+    /// `clearcoat_roughness`, `clearcoat_normal_map`, `clearcoat_normal_scale`, `sheen_color`,
+    /// `sheen_roughness`, `anisotropy`, `anisotropy_rotation`.
+    Pbr,
 }
 
 impl MaterialKind {
@@ -49,6 +62,9 @@ impl MaterialKind {
             MaterialKind::Plastic => "plastic",
             MaterialKind::RoughPlastic => "roughplastic",
             MaterialKind::Blend => "blend",
+            MaterialKind::Principled => "principled",
+            MaterialKind::PrincipledThin => "principledthin",
+            MaterialKind::Pbr => "pbr",
         }
     }
 
@@ -159,6 +175,70 @@ pub struct MaterialDesc {
     /// `blend`: the share of the second material, in `[0, 1]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub weight: Option<Spanned<TextureDesc>>,
+    /// The base colour (`principled`, `principledthin`, `pbr`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base_color: Option<TextureDesc>,
+    /// Metalness in `[0, 1]` (`principled`, `pbr`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metallic: Option<Spanned<TextureDesc>>,
+    /// Anisotropy of the Disney specular lobes, in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anisotropic: Option<Spanned<TextureDesc>>,
+    /// Disney's specular transmission, in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spec_trans: Option<Spanned<TextureDesc>>,
+    /// Disney's specular tint, in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spec_tint: Option<Spanned<TextureDesc>>,
+    /// Disney's sheen, in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sheen: Option<Spanned<TextureDesc>>,
+    /// Disney's sheen tint, in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sheen_tint: Option<Spanned<TextureDesc>>,
+    /// Disney's flatness (fake subsurface), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flatness: Option<Spanned<TextureDesc>>,
+    /// The clearcoat's weight (`principled`, `pbr`), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clearcoat: Option<Spanned<TextureDesc>>,
+    /// Disney's clearcoat gloss, in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clearcoat_gloss: Option<Spanned<TextureDesc>>,
+    /// Disney's diffuse transmission of a thin sheet, in `[0, 2]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diff_trans: Option<Spanned<TextureDesc>>,
+    /// glTF's specular colour (`KHR_materials_specular`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub specular_color: Option<TextureDesc>,
+    /// glTF's transmission (`KHR_materials_transmission`), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmission: Option<Spanned<TextureDesc>>,
+    /// glTF: the transmitted light refracts (a volume, `KHR_materials_volume`) rather than
+    /// passing a thin wall unbent (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub volume: Option<bool>,
+    /// glTF's clearcoat roughness (perceptual), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clearcoat_roughness: Option<Spanned<TextureDesc>>,
+    /// glTF's clearcoat normal map.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clearcoat_normal_map: Option<Spanned<TextureDesc>>,
+    /// The strength of `clearcoat_normal_map` (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clearcoat_normal_scale: Option<Spanned<Finite>>,
+    /// glTF's sheen colour (`KHR_materials_sheen`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sheen_color: Option<TextureDesc>,
+    /// glTF's sheen roughness (perceptual), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sheen_roughness: Option<Spanned<TextureDesc>>,
+    /// glTF's anisotropy strength (`KHR_materials_anisotropy`), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anisotropy: Option<Spanned<TextureDesc>>,
+    /// glTF's anisotropy direction, degrees from the tangent towards the bitangent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anisotropy_rotation: Option<Spanned<Finite>>,
     /// Whether the back side scatters light like the front (default true; Mitsuba's BSDFs
     /// are one-sided unless wrapped in `twosided`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -204,6 +284,27 @@ impl MaterialDesc {
             bump_scale: None,
             materials: None,
             weight: None,
+            base_color: None,
+            metallic: None,
+            anisotropic: None,
+            spec_trans: None,
+            spec_tint: None,
+            sheen: None,
+            sheen_tint: None,
+            flatness: None,
+            clearcoat: None,
+            clearcoat_gloss: None,
+            diff_trans: None,
+            specular_color: None,
+            transmission: None,
+            volume: None,
+            clearcoat_roughness: None,
+            clearcoat_normal_map: None,
+            clearcoat_normal_scale: None,
+            sheen_color: None,
+            sheen_roughness: None,
+            anisotropy: None,
+            anisotropy_rotation: None,
             two_sided: None,
             back: None,
             vertex_colors: None,
@@ -235,6 +336,9 @@ impl MaterialDesc {
             &mut self.eta,
             &mut self.k,
             &mut self.emission,
+            &mut self.base_color,
+            &mut self.specular_color,
+            &mut self.sheen_color,
         ];
         let spanned = [
             &mut self.roughness,
@@ -244,6 +348,21 @@ impl MaterialDesc {
             &mut self.normal_map,
             &mut self.bump_map,
             &mut self.weight,
+            &mut self.metallic,
+            &mut self.anisotropic,
+            &mut self.spec_trans,
+            &mut self.spec_tint,
+            &mut self.sheen,
+            &mut self.sheen_tint,
+            &mut self.flatness,
+            &mut self.clearcoat,
+            &mut self.clearcoat_gloss,
+            &mut self.diff_trans,
+            &mut self.transmission,
+            &mut self.clearcoat_roughness,
+            &mut self.clearcoat_normal_map,
+            &mut self.sheen_roughness,
+            &mut self.anisotropy,
         ];
         plain
             .into_iter()

@@ -11,6 +11,7 @@
 //! reflectance = { vertex_color = true }               # the mesh's vertex colours
 //! reflectance = { product = [{ vertex_color = true }, 0.8] }
 //! roughness = { mix = [0.1, 0.6], amount = { image = "mask.png" } }
+//! opacity = { step = { image = "leaf.png", channel = "a" }, cutoff = 0.5 }   # 1 from 0.5 on
 //! ```
 //!
 //! An image takes `encoding` (`"srgb"` or `"linear"`; by default 8- and 16-bit files are sRGB
@@ -122,6 +123,8 @@ pub enum TextureDesc {
     Product(Box<TextureDesc>, Box<TextureDesc>),
     /// `a·(1 − amount) + b·amount`.
     Mix(Box<TextureDesc>, Box<TextureDesc>, Box<TextureDesc>),
+    /// 1 where the texture reaches the cutoff, 0 below (glTF's alpha `MASK`).
+    Step(Box<TextureDesc>, f32),
 }
 
 impl TextureDesc {
@@ -143,6 +146,7 @@ impl TextureDesc {
                 b.files_mut(f);
                 t.files_mut(f);
             }
+            TextureDesc::Step(t, _) => t.files_mut(f),
             _ => {}
         }
     }
@@ -257,6 +261,7 @@ const KINDS: &[&str] = &[
     "vertex_color",
     "product",
     "mix",
+    "step",
 ];
 
 struct TextureVisitor;
@@ -293,6 +298,8 @@ impl<'de> Visitor<'de> for TextureVisitor {
         let mut checkerboard = None;
         let mut pair: Option<Vec<TextureDesc>> = None;
         let mut amount = None;
+        let mut stepped: Option<TextureDesc> = None;
+        let mut cutoff: Option<f32> = None;
         let mut image = ImageMapDesc::new("");
         let mut placement = Placement::default();
         let mut set_kind = |k: &'static str| -> Result<(), A::Error> {
@@ -351,6 +358,11 @@ impl<'de> Visitor<'de> for TextureVisitor {
                     pair = Some(v);
                 }
                 "amount" => amount = Some(map.next_value::<TextureDesc>()?),
+                "step" => {
+                    set_kind("step")?;
+                    stepped = Some(map.next_value::<TextureDesc>()?);
+                }
+                "cutoff" => cutoff = Some(map.next_value::<Finite>()?.0),
                 "encoding" => image.encoding = Some(map.next_value()?),
                 "channel" => {
                     let name: String = map.next_value()?;
@@ -416,7 +428,16 @@ impl<'de> Visitor<'de> for TextureVisitor {
                 "`amount` goes with `mix` (and a mix needs it)",
             ));
         }
+        if cutoff.is_some() != (kind == "step") {
+            return Err(de::Error::custom(
+                "`cutoff` goes with `step` (and a step needs it)",
+            ));
+        }
         Ok(match kind {
+            "step" => TextureDesc::Step(
+                Box::new(stepped.expect("the kind was set with its value")),
+                cutoff.expect("checked above"),
+            ),
             "image" => {
                 image.file = file.unwrap_or_default();
                 image.placement = placement;
@@ -552,6 +573,12 @@ impl Serialize for TextureDesc {
                 let mut m = s.serialize_map(Some(2))?;
                 m.serialize_entry("mix", &[a.as_ref(), b.as_ref()])?;
                 m.serialize_entry("amount", t.as_ref())?;
+                m.end()
+            }
+            TextureDesc::Step(t, cutoff) => {
+                let mut m = s.serialize_map(Some(2))?;
+                m.serialize_entry("step", t.as_ref())?;
+                m.serialize_entry("cutoff", &Finite(*cutoff))?;
                 m.end()
             }
         }

@@ -1,33 +1,37 @@
-//! glTF's metallic-roughness materials as lucent's physically based kinds.
+//! glTF's metallic-roughness materials, with their textures and extensions, as lucent's `pbr`
+//! kind (the specification's BRDF, appendix B; see `lucent::bsdf::gltf_pbr`).
 //!
-//! | glTF | lucent |
+//! | glTF | lucent `pbr` |
 //! | --- | --- |
-//! | metallic ≥ 0.5, roughness ≤ 0.05 | `conductor`: `specular` = base colour (no `eta`/`k`: an ideal reflector tinted by it) |
-//! | metallic ≥ 0.5 | `roughconductor`: as above, `roughness` α = roughness² |
-//! | transmission ≥ 0.5, roughness ≤ 0.05 | `dielectric`: `ior`, `transmittance` = base colour |
-//! | transmission ≥ 0.5 | `roughdielectric`: as above, `roughness` α |
-//! | roughness ≥ 0.5 | `diffuse`: `reflectance` = base colour or texture |
-//! | otherwise | `plastic`: `reflectance`, `ior`, and `roughness` α unless roughness ≤ 0.05 |
+//! | `baseColorFactor` × `baseColorTexture` (sRGB) | `base_color` |
+//! | `metallicFactor` × blue, `roughnessFactor` × green of `metallicRoughnessTexture` | `metallic`, `roughness` |
+//! | `normalTexture` (`scale`) | `normal_map` (`normal_scale`), in the mesh's `TANGENT` frame or MikkTSpace's |
+//! | `emissiveFactor` × `emissiveTexture` × `KHR_materials_emissive_strength` | `emission` |
+//! | `alphaMode` `MASK` (`alphaCutoff`) / `BLEND`: base colour alpha × texture alpha | `opacity`: a `step` at the cutoff / the alpha itself |
+//! | `doubleSided` | `two_sided` |
+//! | `KHR_materials_ior`, `_specular`, `_transmission`, `_volume` (a thickness: refracting) | `ior`, `specular`, `specular_color`, `transmission`, `volume` |
+//! | `KHR_materials_clearcoat`, `_sheen`, `_anisotropy` (strength, rotation) | `clearcoat`, `clearcoat_roughness`, `clearcoat_normal_map`; `sheen_color`, `sheen_roughness`; `anisotropy`, `anisotropy_rotation` |
+//! | a sampler's `wrapS`/`wrapT`, `magFilter` `NEAREST`; `KHR_texture_transform` | an image's `wrap`, `filter`; its `scale`, `rotation`, `offset` |
 //!
-//! The rows are tried in order: a metal is opaque whatever its transmission factor. `roughness`,
-//! `metallic` and `transmission` are the factors (textures are not read); α = roughness² is the
-//! usual remapping of glTF's perceptual roughness to GGX's. `ior` is KHR_materials_ior's
-//! (default 1.5). Colours are linear in glTF, as in lucent, and are kept as they are. The
-//! emissive factor times KHR_materials_emissive_strength becomes `emission` when it is not
-//! black; `doubleSided` becomes `two_sided`.
+//! Not read (each a note naming the material): images inside the glTF or GLB file, texture
+//! coordinates other than `TEXCOORD_0`, `KHR_materials_volume`'s attenuation,
+//! `KHR_materials_anisotropy`'s direction texture, `KHR_materials_iridescence`, unlit and
+//! specular-glossiness materials. `occlusionTexture` is a rasteriser's stand-in for the
+//! shadowing a path tracer computes, and is left out on purpose.
 
 use super::source::file_name_of_uri;
+use crate::desc::texture::{Encoding, Placement};
 use crate::desc::{Finite, ImageMapDesc, MaterialDesc, MaterialKind, TextureDesc};
 use crate::paths::{LoadOptions, resolve};
+use gltf::json::validation::Checked;
 use gltf::material::AlphaMode;
+use gltf::texture::{MagFilter, WrappingMode};
 use lucent::Rgb;
+use lucent::texture::{Channel, Filter, Wrap};
+use serde_json::Value;
 use std::path::Path;
 use toml::Spanned;
 
-/// A glTF roughness at or below this is taken for a smooth surface.
-pub(super) const SMOOTH: f32 = 0.05;
-/// A glTF roughness at or above this makes a dielectric surface `diffuse` rather than `plastic`.
-pub(super) const DIFFUSE: f32 = 0.5;
 /// The reflectance of the material given to primitives without one.
 pub(super) const DEFAULT_REFLECTANCE: f32 = 0.8;
 
@@ -44,12 +48,200 @@ pub(super) fn default_material(name: &str) -> MaterialDesc {
 
 /// Where image files are looked for, and how.
 pub(super) struct Images<'a> {
-    /// The document's JSON, for the images' URIs.
+    /// The document's JSON, for the textures, samplers and images.
     pub root: &'a gltf::json::Root,
     /// The glTF file's folder.
     pub base_dir: &'a Path,
     /// `--sandbox` or not.
     pub options: &'a LoadOptions,
+}
+
+/// A texture slot as a material gives it: which texture, which coordinates, its scale or
+/// strength (normal and occlusion maps), and its `KHR_texture_transform`.
+#[derive(Clone)]
+struct Slot {
+    texture: usize,
+    tex_coord: u32,
+    scale: f32,
+    transform: Option<Value>,
+}
+
+impl Slot {
+    fn of_info(info: &gltf::texture::Info) -> Self {
+        Slot {
+            texture: info.texture().index(),
+            tex_coord: info.tex_coord(),
+            scale: 1.0,
+            transform: info.extension_value("KHR_texture_transform").cloned(),
+        }
+    }
+
+    /// A texture slot inside an extension's JSON (`{"index": 3, "texCoord": 0, ...}`).
+    fn of_json(v: Option<&Value>) -> Option<Self> {
+        let v = v?;
+        Some(Slot {
+            texture: v.get("index")?.as_u64()? as usize,
+            tex_coord: v.get("texCoord").and_then(Value::as_u64).unwrap_or(0) as u32,
+            scale: number(v, "scale", 1.0),
+            transform: v
+                .get("extensions")
+                .and_then(|e| e.get("KHR_texture_transform"))
+                .cloned(),
+        })
+    }
+}
+
+/// `v[key]` as a number, or `default`.
+fn number(v: &Value, key: &str, default: f32) -> f32 {
+    v.get(key)
+        .and_then(Value::as_f64)
+        .map_or(default, |x| x as f32)
+}
+
+/// `v[key]` as a colour of three numbers, or `default`.
+fn color_of(v: &Value, key: &str, default: Rgb) -> Rgb {
+    match v.get(key).and_then(Value::as_array) {
+        Some(a) if a.len() == 3 => {
+            let c = |i: usize| a[i].as_f64().unwrap_or(0.0) as f32;
+            Rgb::new(c(0), c(1), c(2))
+        }
+        _ => default,
+    }
+}
+
+/// Reads one material, collecting notes on what it does not render as written.
+struct Reader<'a, 'b> {
+    images: &'b Images<'a>,
+    label: String,
+    notes: Vec<String>,
+}
+
+impl Reader<'_, '_> {
+    fn note(&mut self, s: impl std::fmt::Display) {
+        self.notes.push(format!("{}: {s}", self.label));
+    }
+
+    /// The image lookup of `slot` reading `channel` (`None` when the image cannot be read,
+    /// with a note). An error when `--sandbox` refuses the file.
+    fn image(
+        &mut self,
+        slot: &Slot,
+        what: &str,
+        encoding: Encoding,
+        channel: Channel,
+    ) -> Result<Option<TextureDesc>, String> {
+        let root = self.images.root;
+        let Some(texture) = root.textures.get(slot.texture) else {
+            self.note(format!(
+                "{what}: texture {} does not exist; ignored",
+                slot.texture
+            ));
+            return Ok(None);
+        };
+        let index = texture.source.value();
+        // The JSON is read directly: the crate's `Image::source` panics on an image that has
+        // neither a URI nor a buffer view with a MIME type, which validation lets through.
+        let uri = root
+            .images
+            .get(index)
+            .and_then(|i| i.uri.as_deref())
+            .filter(|uri| !uri.starts_with("data:"));
+        let Some(uri) = uri else {
+            self.note(format!(
+                "{what}: image {index} is embedded in the file and is not extracted; the factor alone is used"
+            ));
+            return Ok(None);
+        };
+        let file = file_name_of_uri(uri).map_err(|e| format!("image {index}: {e}"))?;
+        resolve(self.images.base_dir, &file, self.images.options)
+            .map_err(|e| format!("image {index}: {e}"))?;
+        let mut tex_coord = slot.tex_coord;
+        let mut placement = Placement::default();
+        if let Some(t) = &slot.transform {
+            let pair = |key: &str, default: [f32; 2]| match t.get(key).and_then(Value::as_array) {
+                Some(a) if a.len() == 2 => [
+                    a[0].as_f64().unwrap_or(default[0] as f64) as f32,
+                    a[1].as_f64().unwrap_or(default[1] as f64) as f32,
+                ],
+                _ => default,
+            };
+            placement.scale = Some(pair("scale", [1.0, 1.0]));
+            placement.offset = Some(pair("offset", [0.0, 0.0]));
+            // glTF turns uv by −rotation in lucent's sense (from +u towards +v).
+            placement.rotation = Some(-number(t, "rotation", 0.0).to_degrees());
+            if let Some(k) = t.get("texCoord").and_then(Value::as_u64) {
+                tex_coord = k as u32;
+            }
+        }
+        if tex_coord != 0 {
+            self.note(format!(
+                "{what} uses TEXCOORD_{tex_coord}; TEXCOORD_0 is used"
+            ));
+        }
+        let mut image = ImageMapDesc::new(file);
+        image.encoding = Some(encoding);
+        if channel != Channel::Rgb {
+            image.channel = Some(channel);
+        }
+        image.placement = placement;
+        if let Some(s) = texture.sampler.and_then(|s| root.samplers.get(s.value())) {
+            let wrap = |w: Checked<WrappingMode>| match w {
+                Checked::Valid(WrappingMode::ClampToEdge) => Wrap::Clamp,
+                Checked::Valid(WrappingMode::MirroredRepeat) => Wrap::Mirror,
+                _ => Wrap::Repeat,
+            };
+            let wraps = [wrap(s.wrap_s), wrap(s.wrap_t)];
+            if wraps != [Wrap::Repeat; 2] {
+                image.wrap = Some(wraps);
+            }
+            if s.mag_filter == Some(Checked::Valid(MagFilter::Nearest)) {
+                image.filter = Some(Filter::Nearest);
+            }
+        }
+        Ok(Some(TextureDesc::Image(image)))
+    }
+
+    /// `factor` times the texture of `slot` (if any), as one texture.
+    fn scaled(
+        &mut self,
+        factor: Rgb,
+        slot: Option<Slot>,
+        what: &str,
+        encoding: Encoding,
+        channel: Channel,
+    ) -> Result<TextureDesc, String> {
+        let factor = self.clean(factor, what);
+        let texture = match slot {
+            Some(s) if !factor.is_black() => self.image(&s, what, encoding, channel)?,
+            _ => None,
+        };
+        Ok(match texture {
+            None => TextureDesc::Solid(factor),
+            Some(t) if factor == Rgb::WHITE => t,
+            Some(t) => TextureDesc::Product(Box::new(TextureDesc::Solid(factor)), Box::new(t)),
+        })
+    }
+
+    /// A colour with negative or non-finite channels (which glTF does not allow) set to 0.
+    fn clean(&mut self, c: Rgb, what: &str) -> Rgb {
+        let v = c.to_array();
+        if v.iter().all(|x| x.is_finite() && *x >= 0.0) {
+            return c;
+        }
+        self.note(format!(
+            "{what} {v:?} has negative or infinite channels, set to 0"
+        ));
+        Rgb::from(v.map(|x| if x.is_finite() && x > 0.0 { x } else { 0.0 }))
+    }
+}
+
+fn spanned<T>(v: T) -> Spanned<T> {
+    Spanned::new(0..0, v)
+}
+
+/// A number as a grey texture, kept only where it is not the default.
+fn unless_default(t: TextureDesc, default: f32) -> Option<Spanned<TextureDesc>> {
+    (t != TextureDesc::gray(default)).then(|| spanned(t))
 }
 
 /// The description of material `m` named `name`, and notes on what it does not render as
@@ -64,189 +256,270 @@ pub(super) fn describe(
         (Some(i), None) => format!("material {i}"),
         (None, _) => "the default material".to_string(),
     };
-    let mut notes = Vec::new();
-    let mut note = |s: String| notes.push(format!("{label}: {s}"));
-    let pbr = m.pbr_metallic_roughness();
-    let [r, g, b, _alpha] = pbr.base_color_factor();
-    let base = color([r, g, b], "baseColorFactor", &mut note);
-    let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
-    let roughness = pbr.roughness_factor().clamp(0.0, 1.0);
-    let alpha = roughness * roughness;
-    let transmission = m
-        .transmission()
-        .map_or(0.0, |t| t.transmission_factor())
-        .clamp(0.0, 1.0);
-    let ior = match m.ior() {
-        None => 1.5,
-        Some(v) if v >= 1.0 && v.is_finite() => v,
-        Some(v) => {
-            note(format!(
-                "ior {v} is not an index of refraction ≥ 1; 1.5 is used"
-            ));
-            1.5
-        }
-    };
-    let smooth = roughness <= SMOOTH;
-    // A metal is opaque whatever its transmission (KHR_materials_transmission mixes the
-    // transmissive dielectric with the metal by `metallic`), so metallic is decided first.
-    let kind = if metallic >= 0.5 {
-        if smooth {
-            MaterialKind::Conductor
-        } else {
-            MaterialKind::RoughConductor
-        }
-    } else if transmission >= 0.5 {
-        if smooth {
-            MaterialKind::Dielectric
-        } else {
-            MaterialKind::RoughDielectric
-        }
-    } else if roughness >= DIFFUSE {
-        MaterialKind::Diffuse
-    } else {
-        MaterialKind::Plastic
-    };
-    let metal = metallic >= 0.5;
-    for (what, v) in [
-        ("metallicFactor", metallic),
-        ("transmissionFactor", transmission),
-    ] {
-        if v != 0.0 && v != 1.0 && !(metal && what == "transmissionFactor") {
-            note(format!(
-                "{what} {v} is rounded to {}: rendered as `{}`",
-                v.round(),
-                kind.name()
-            ));
-        }
-    }
-    if !matches!(m.alpha_mode(), AlphaMode::Opaque) {
-        note(format!(
-            "alpha mode {:?} is not rendered: opaque",
-            m.alpha_mode()
-        ));
-    }
-    let texture = match pbr.base_color_texture() {
-        None => None,
-        Some(info) => image_file(&info, images, &mut note)?,
+    let mut r = Reader {
+        images,
+        label,
+        notes: Vec::new(),
     };
     let mut d = MaterialDesc::named(name);
-    d.kind = Some(Spanned::new(0..0, kind));
-    let finite = |v: f32| Some(Spanned::new(0..0, Finite(v)));
-    match kind {
-        MaterialKind::Dielectric | MaterialKind::RoughDielectric => {
-            d.ior = finite(ior);
-            d.transmittance = Some(TextureDesc::Solid(base));
-        }
-        MaterialKind::Conductor | MaterialKind::RoughConductor => {
-            d.specular = Some(TextureDesc::Solid(base));
-        }
-        _ => {
-            d.reflectance = Some(match &texture {
-                Some(file) => {
-                    if base != Rgb::WHITE {
-                        note(format!(
-                            "baseColorFactor {:?} times the texture: the factor is dropped",
-                            base.to_array()
-                        ));
-                    }
-                    TextureDesc::Image(ImageMapDesc::new(file.clone()))
-                }
-                None => TextureDesc::Solid(base),
-            });
-            if kind == MaterialKind::Plastic {
-                d.ior = finite(ior);
+    d.kind = Some(spanned(MaterialKind::Pbr));
+    d.two_sided = Some(m.double_sided());
+    let pbr = m.pbr_metallic_roughness();
+    let [br, bg, bb, alpha] = pbr.base_color_factor();
+    let base_slot = pbr.base_color_texture().map(|i| Slot::of_info(&i));
+    let base = r.scaled(
+        Rgb::new(br, bg, bb),
+        base_slot.clone(),
+        "baseColorTexture",
+        Encoding::Srgb,
+        Channel::Rgb,
+    )?;
+    if base != TextureDesc::gray(1.0) {
+        d.base_color = Some(base);
+    }
+    let mr = || pbr.metallic_roughness_texture().map(|i| Slot::of_info(&i));
+    let metallic = r.scaled(
+        Rgb::gray(pbr.metallic_factor().clamp(0.0, 1.0)),
+        mr(),
+        "metallicRoughnessTexture",
+        Encoding::Linear,
+        Channel::B,
+    )?;
+    d.metallic = unless_default(metallic, 1.0);
+    let roughness = r.scaled(
+        Rgb::gray(pbr.roughness_factor().clamp(0.0, 1.0)),
+        mr(),
+        "metallicRoughnessTexture",
+        Encoding::Linear,
+        Channel::G,
+    )?;
+    d.roughness = unless_default(roughness, 1.0);
+    if let Some(n) = m.normal_texture() {
+        let slot = Slot {
+            texture: n.texture().index(),
+            tex_coord: n.tex_coord(),
+            scale: n.scale(),
+            transform: n.extension_value("KHR_texture_transform").cloned(),
+        };
+        if let Some(t) = r.image(&slot, "normalTexture", Encoding::Linear, Channel::Rgb)? {
+            d.normal_map = Some(spanned(t));
+            if slot.scale != 1.0 && slot.scale.is_finite() {
+                d.normal_scale = Some(spanned(Finite(slot.scale)));
             }
         }
     }
-    if texture.is_some() && !matches!(kind, MaterialKind::Diffuse | MaterialKind::Plastic) {
-        note(format!(
-            "the base colour texture does not apply to `{}`; baseColorFactor is used",
-            kind.name()
-        ));
-    }
-    if matches!(
-        kind,
-        MaterialKind::RoughDielectric | MaterialKind::RoughConductor | MaterialKind::Plastic
-    ) && !smooth
-    {
-        d.roughness = Some(Spanned::new(0..0, TextureDesc::gray(alpha)));
-    }
     let strength = m.emissive_strength().unwrap_or(1.0);
     let [er, eg, eb] = m.emissive_factor();
-    let emission = color(
-        [er * strength, eg * strength, eb * strength],
-        "emission",
-        &mut note,
-    );
-    if !emission.is_black() {
-        d.emission = Some(TextureDesc::Solid(emission));
+    let emission = r.scaled(
+        Rgb::new(er, eg, eb) * strength,
+        m.emissive_texture().map(|i| Slot::of_info(&i)),
+        "emissiveTexture",
+        Encoding::Srgb,
+        Channel::Rgb,
+    )?;
+    if emission != TextureDesc::Solid(Rgb::BLACK) {
+        d.emission = Some(emission);
     }
-    d.two_sided = Some(m.double_sided());
-    let ignored = [
-        (
-            "metallicRoughnessTexture",
-            pbr.metallic_roughness_texture().is_some(),
-        ),
-        ("normalTexture", m.normal_texture().is_some()),
-        ("emissiveTexture", m.emissive_texture().is_some()),
-        (
+    alpha_mode(&mut r, m, alpha, base_slot, &mut d)?;
+    extensions(&mut r, m, &mut d)?;
+    Ok((d, r.notes))
+}
+
+/// `MASK` and `BLEND`: the base colour's alpha (factor times texture) as the opacity.
+fn alpha_mode(
+    r: &mut Reader,
+    m: &gltf::Material,
+    alpha: f32,
+    base: Option<Slot>,
+    d: &mut MaterialDesc,
+) -> Result<(), String> {
+    let mode = m.alpha_mode();
+    if mode == AlphaMode::Opaque {
+        return Ok(());
+    }
+    // A texture without an alpha channel has an alpha of 1 (glTF 2.0 §3.9.2).
+    let base = base.filter(|s| r.has_alpha(s));
+    let coverage = r.scaled(
+        Rgb::gray(alpha.clamp(0.0, 1.0)),
+        base,
+        "baseColorTexture's alpha",
+        Encoding::Srgb,
+        Channel::A,
+    )?;
+    let opacity = match mode {
+        AlphaMode::Mask => {
+            let cutoff = m.alpha_cutoff().unwrap_or(0.5);
+            match coverage {
+                TextureDesc::Solid(c) => TextureDesc::gray(if c.r >= cutoff { 1.0 } else { 0.0 }),
+                t => TextureDesc::Step(Box::new(t), cutoff),
+            }
+        }
+        _ => coverage,
+    };
+    if opacity != TextureDesc::gray(1.0) {
+        d.opacity = Some(spanned(opacity));
+    }
+    Ok(())
+}
+
+impl Reader<'_, '_> {
+    /// Whether the image of `slot` is a file with an alpha channel (its header read).
+    fn has_alpha(&self, slot: &Slot) -> bool {
+        let root = self.images.root;
+        let Some(uri) = root
+            .textures
+            .get(slot.texture)
+            .and_then(|t| root.images.get(t.source.value()))
+            .and_then(|i| i.uri.as_deref())
+        else {
+            return false;
+        };
+        let Ok(file) = file_name_of_uri(uri) else {
+            return false;
+        };
+        let Ok(path) = resolve(self.images.base_dir, &file, self.images.options) else {
+            return false;
+        };
+        image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .ok()
+            .and_then(|r| r.into_decoder().ok())
+            .is_some_and(|dec| image::ImageDecoder::color_type(&dec).has_alpha())
+    }
+}
+
+/// The `KHR_materials_*` layers.
+fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Result<(), String> {
+    match m.ior() {
+        None => {}
+        Some(v) if v >= 1.0 && v.is_finite() => d.ior = Some(spanned(Finite(v))),
+        Some(v) => r.note(format!(
+            "ior {v} is not an index of refraction ≥ 1; 1.5 is used"
+        )),
+    }
+    if let Some(s) = m.specular() {
+        let t = r.scaled(
+            Rgb::gray(s.specular_factor().clamp(0.0, 1.0)),
+            s.specular_texture().map(|i| Slot::of_info(&i)),
+            "specularTexture",
+            Encoding::Linear,
+            Channel::A,
+        )?;
+        if t != TextureDesc::gray(1.0) {
+            d.specular = Some(t);
+        }
+        let c = r.scaled(
+            Rgb::from(s.specular_color_factor()),
+            s.specular_color_texture().map(|i| Slot::of_info(&i)),
+            "specularColorTexture",
+            Encoding::Srgb,
+            Channel::Rgb,
+        )?;
+        if c != TextureDesc::gray(1.0) {
+            d.specular_color = Some(c);
+        }
+    }
+    if let Some(t) = m.transmission() {
+        let tr = r.scaled(
+            Rgb::gray(t.transmission_factor().clamp(0.0, 1.0)),
+            t.transmission_texture().map(|i| Slot::of_info(&i)),
             "transmissionTexture",
-            m.transmission()
-                .is_some_and(|t| t.transmission_texture().is_some()),
+            Encoding::Linear,
+            Channel::R,
+        )?;
+        d.transmission = unless_default(tr, 0.0);
+    }
+    if let Some(v) = m.volume() {
+        if v.thickness_factor() > 0.0 {
+            d.volume = Some(true);
+        }
+        if v.attenuation_distance().is_finite() && v.attenuation_color() != [1.0; 3] {
+            r.note("KHR_materials_volume's attenuation is not rendered: the volume is clear");
+        }
+    }
+    if let Some(c) = m.extension_value("KHR_materials_clearcoat") {
+        let weight = r.scaled(
+            Rgb::gray(number(c, "clearcoatFactor", 0.0).clamp(0.0, 1.0)),
+            Slot::of_json(c.get("clearcoatTexture")),
+            "clearcoatTexture",
+            Encoding::Linear,
+            Channel::R,
+        )?;
+        d.clearcoat = unless_default(weight, 0.0);
+        let rough = r.scaled(
+            Rgb::gray(number(c, "clearcoatRoughnessFactor", 0.0).clamp(0.0, 1.0)),
+            Slot::of_json(c.get("clearcoatRoughnessTexture")),
+            "clearcoatRoughnessTexture",
+            Encoding::Linear,
+            Channel::G,
+        )?;
+        d.clearcoat_roughness = unless_default(rough, 0.0);
+        if let Some(slot) = Slot::of_json(c.get("clearcoatNormalTexture"))
+            && d.clearcoat.is_some()
+            && let Some(t) = r.image(
+                &slot,
+                "clearcoatNormalTexture",
+                Encoding::Linear,
+                Channel::Rgb,
+            )?
+        {
+            d.clearcoat_normal_map = Some(spanned(t));
+            if slot.scale != 1.0 && slot.scale.is_finite() {
+                d.clearcoat_normal_scale = Some(spanned(Finite(slot.scale)));
+            }
+        }
+    }
+    if let Some(s) = m.extension_value("KHR_materials_sheen") {
+        let color = r.scaled(
+            color_of(s, "sheenColorFactor", Rgb::BLACK),
+            Slot::of_json(s.get("sheenColorTexture")),
+            "sheenColorTexture",
+            Encoding::Srgb,
+            Channel::Rgb,
+        )?;
+        if color != TextureDesc::Solid(Rgb::BLACK) {
+            d.sheen_color = Some(color);
+            let rough = r.scaled(
+                Rgb::gray(number(s, "sheenRoughnessFactor", 0.0).clamp(0.0, 1.0)),
+                Slot::of_json(s.get("sheenRoughnessTexture")),
+                "sheenRoughnessTexture",
+                Encoding::Linear,
+                Channel::A,
+            )?;
+            d.sheen_roughness = unless_default(rough, 0.0);
+        }
+    }
+    if let Some(a) = m.extension_value("KHR_materials_anisotropy") {
+        let slot = Slot::of_json(a.get("anisotropyTexture"));
+        if slot.is_some() {
+            r.note("anisotropyTexture's direction is not read; its strength (blue) is, and anisotropyRotation");
+        }
+        let strength = r.scaled(
+            Rgb::gray(number(a, "anisotropyStrength", 0.0).clamp(0.0, 1.0)),
+            slot,
+            "anisotropyTexture",
+            Encoding::Linear,
+            Channel::B,
+        )?;
+        d.anisotropy = unless_default(strength, 0.0);
+        let rotation = number(a, "anisotropyRotation", 0.0);
+        if rotation != 0.0 && rotation.is_finite() {
+            d.anisotropy_rotation = Some(spanned(Finite(rotation.to_degrees())));
+        }
+    }
+    for (ext, what) in [
+        ("KHR_materials_iridescence", "iridescence"),
+        ("KHR_materials_unlit", "an unlit material (it is shaded)"),
+        (
+            "KHR_materials_pbrSpecularGlossiness",
+            "a specular-glossiness material (its metallic-roughness fallback is used)",
         ),
-    ];
-    for (what, _) in ignored.iter().filter(|(_, present)| *present) {
-        note(format!("{what} is not read; the factors are used"));
-    }
-    Ok((d, notes))
-}
-
-/// `[r, g, b]` as a colour; negative or non-finite channels (which glTF does not allow) become 0.
-fn color(v: [f32; 3], what: &str, note: &mut impl FnMut(String)) -> Rgb {
-    let clean = v.map(|c| if c.is_finite() && c > 0.0 { c } else { 0.0 });
-    if v.iter().any(|c| !c.is_finite() || *c < 0.0) {
-        note(format!(
-            "{what} {v:?} has negative or infinite channels, set to 0"
-        ));
-    }
-    Rgb::from(clean)
-}
-
-/// The file name of a texture's image, relative to the glTF file's folder, when it is a file
-/// (`None`, with a note, for images inside the glTF or GLB file, which are not extracted). An
-/// error when `--sandbox` refuses the name.
-fn image_file(
-    info: &gltf::texture::Info,
-    images: &Images,
-    note: &mut impl FnMut(String),
-) -> Result<Option<String>, String> {
-    if info.tex_coord() != 0 {
-        note(format!(
-            "the base colour texture uses TEXCOORD_{}; TEXCOORD_0 is used",
-            info.tex_coord()
-        ));
-    }
-    // The JSON is read directly: the crate's `Image::source` panics on an image that has
-    // neither a URI nor a buffer view with a MIME type, which validation lets through.
-    let index = info.texture().source().index();
-    let uri = images
-        .root
-        .images
-        .get(index)
-        .and_then(|i| i.uri.as_deref())
-        .filter(|uri| !uri.starts_with("data:"));
-    match uri {
-        Some(uri) => {
-            let name = file_name_of_uri(uri).map_err(|e| format!("image {index}: {e}"))?;
-            resolve(images.base_dir, &name, images.options)
-                .map_err(|e| format!("image {index}: {e}"))?;
-            Ok(Some(name))
-        }
-        None => {
-            note(format!(
-                "image {index} is embedded in the glTF file and is not extracted; baseColorFactor is used"
-            ));
-            Ok(None)
+        ("KHR_materials_dispersion", "dispersion"),
+        ("KHR_materials_diffuse_transmission", "diffuse transmission"),
+    ] {
+        if m.extension_value(ext).is_some() {
+            r.note(format!("{ext}: {what} is not rendered"));
         }
     }
+    Ok(())
 }

@@ -2,7 +2,7 @@
 //! primitives into one world-space mesh.
 
 use super::accessor::{MAX_ELEMENTS, read_floats, read_indices};
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::mesh::{Mode, Semantic};
 use lucent::Rgb;
 use lucent::shape::Mesh;
@@ -88,6 +88,7 @@ pub(super) fn decode(
     let normals = optional(Semantic::Normals, &[3], "normals");
     let uvs = optional(Semantic::TexCoords(0), &[2], "texture coordinates");
     let colors = optional(Semantic::Colors(0), &[3, 4], "colours");
+    let tangents = optional(Semantic::Tangents, &[4], "tangents");
     if let Some((v, _)) = normals {
         // Shading normals must be unit vectors; the file's should be, but are normalised anyway.
         let unit: Option<Vec<Vec3>> = v
@@ -126,6 +127,36 @@ pub(super) fn decode(
                 "{label}: colours dropped: one is negative or not finite"
             ));
         }
+    }
+    if let Some((v, _)) = tangents {
+        let frames: Option<Vec<Vec4>> = v
+            .chunks_exact(4)
+            .map(|c| {
+                let t = Vec3::from_slice(&c[..3]).try_normalize()?;
+                Some(t.extend(if c[3] < 0.0 { -1.0 } else { 1.0 }))
+            })
+            .collect();
+        match frames {
+            Some(f) if !m.normals.is_empty() => m.tangents = f,
+            Some(_) => notes.push(format!("{label}: tangents dropped: there are no normals")),
+            None => notes.push(format!(
+                "{label}: tangents dropped: one is zero or not finite"
+            )),
+        }
+    }
+    // A normal map needs the frame it was baked in: MikkTSpace's, where the file gives none.
+    let material = prim.material();
+    let normal_mapped = material.normal_texture().is_some()
+        || material
+            .extension_value("KHR_materials_clearcoat")
+            .is_some_and(|c| c.get("clearcoatNormalTexture").is_some())
+        || material
+            .extension_value("KHR_materials_anisotropy")
+            .is_some();
+    if normal_mapped && m.tangents.is_empty() && !crate::tangents::generate(&mut m) {
+        notes.push(format!(
+            "{label}: its material's normal map needs normals and texture coordinates for a tangent frame; the uv tangents of each triangle are used"
+        ));
     }
     m.validate().map_err(err)?;
     Ok(Decoded::Triangles(m, notes))
@@ -186,6 +217,7 @@ pub(super) fn merge(parts: &[(&Mesh, Mat4)]) -> Result<Mesh, String> {
     let all = |has: fn(&Mesh) -> bool| parts.iter().all(|(m, _)| has(m));
     let keep_normals = all(|m| !m.normals.is_empty());
     let keep_uvs = all(|m| !m.uvs.is_empty());
+    let keep_tangents = all(|m| !m.tangents.is_empty());
     let keep_colors = parts.iter().any(|(m, _)| !m.colors.is_empty());
     let mut out = Mesh {
         positions: Vec::with_capacity(vertices),
@@ -217,6 +249,16 @@ pub(super) fn merge(parts: &[(&Mesh, Mat4)]) -> Result<Mesh, String> {
         }
         if keep_uvs {
             out.uvs.extend_from_slice(&m.uvs);
+        }
+        if keep_tangents {
+            // Tangents are directions; a mirror turns the bitangent against `n × t`.
+            let linear = Mat3::from_mat4(*world);
+            let sign = if mirrored { -1.0 } else { 1.0 };
+            out.tangents.extend(m.tangents.iter().map(|t| {
+                (linear * t.truncate())
+                    .normalize_or(t.truncate())
+                    .extend(t.w * sign)
+            }));
         }
         if keep_colors {
             if m.colors.is_empty() {

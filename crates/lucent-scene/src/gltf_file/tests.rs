@@ -7,142 +7,185 @@ use std::f32::consts::FRAC_PI_2;
 
 const MATERIALS: &str = r#"{
   "asset": {"version": "2.0"},
-  "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"],
+  "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength",
+                     "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
+                     "KHR_materials_volume", "KHR_texture_transform", "KHR_materials_iridescence"],
+  "buffers": [{"byteLength": 4}],
+  "bufferViews": [{"buffer": 0, "byteLength": 4}],
+  "images": [{"uri": "base.png"}, {"uri": "orm.png"}, {"uri": "normal.png"}, {"uri": "glow.png"},
+             {"bufferView": 0, "mimeType": "image/png"}],
+  "samplers": [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728}],
+  "textures": [{"source": 0}, {"source": 1, "sampler": 0}, {"source": 2}, {"source": 3}, {"source": 4}],
   "materials": [
     {"name": "Glass", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.95, 1, 1], "metallicFactor": 0, "roughnessFactor": 0},
-     "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.33}}},
-    {"name": "Frosted", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5},
-     "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.75}}},
-    {"name": "Gold", "pbrMetallicRoughness": {"baseColorFactor": [1, 0.8, 0.25, 1], "metallicFactor": 1, "roughnessFactor": 0.02}},
-    {"name": "Brushed", "pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0.4},
-     "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}}},
-    {"name": "Chalk", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 1], "metallicFactor": 0, "roughnessFactor": 0.9}, "doubleSided": true},
-    {"name": "Shiny", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1], "metallicFactor": 0, "roughnessFactor": 0.3}},
-    {"name": "Lamp", "emissiveFactor": [1, 0.5, 0], "pbrMetallicRoughness": {"metallicFactor": 0.25},
-     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}},
-    {"name": "Shiny", "alphaMode": "BLEND"},
+     "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.33},
+                    "KHR_materials_volume": {"thicknessFactor": 0.5}}},
+    {"name": "Textured", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.5, 1, 1, 1], "baseColorTexture": {"index": 0,
+            "extensions": {"KHR_texture_transform": {"scale": [2, 3], "offset": [0.5, 0], "rotation": 0.5}}},
+        "metallicFactor": 0.5, "metallicRoughnessTexture": {"index": 1}},
+     "normalTexture": {"index": 2, "scale": 0.75},
+     "emissiveFactor": [1, 0.5, 0], "emissiveTexture": {"index": 3},
+     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}},
+     "doubleSided": true},
+    {"name": "Layers", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.3},
+     "extensions": {
+        "KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatRoughnessFactor": 0.1,
+                                    "clearcoatNormalTexture": {"index": 2, "scale": 2}},
+        "KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.25, 1], "sheenRoughnessFactor": 0.4},
+        "KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1, 0.5, 0.5]},
+        "KHR_materials_iridescence": {"iridescenceFactor": 1}}},
+    {"name": "Cutout", "alphaMode": "MASK", "alphaCutoff": 0.25,
+     "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.2]}},
+    {"name": "Veil", "alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.4],
+        "baseColorTexture": {"index": 4}}},
     {}
   ]
 }"#;
 
-fn ior(d: &MaterialDesc) -> Option<f32> {
-    d.ior.as_ref().map(|v| v.get_ref().0)
-}
-
-fn roughness(d: &MaterialDesc) -> Option<f32> {
-    d.roughness.as_ref().map(|v| match v.get_ref() {
+fn number(t: &Option<Spanned<TextureDesc>>) -> Option<f32> {
+    t.as_ref().map(|v| match v.get_ref() {
         TextureDesc::Solid(c) => c.r,
-        other => panic!("a constant roughness, got {other:?}"),
+        other => panic!("a constant, got {other:?}"),
     })
 }
 
-use crate::desc::MaterialDesc;
+use crate::desc::texture::Encoding;
+use lucent::texture::{Channel, Filter, Wrap};
+
+/// The image lookup `t` is, or is multiplied into.
+fn image(t: &TextureDesc) -> &crate::desc::ImageMapDesc {
+    match t {
+        TextureDesc::Image(i) => i,
+        TextureDesc::Product(_, b) => image(b),
+        TextureDesc::Step(t, _) => image(t),
+        other => panic!("an image, got {other:?}"),
+    }
+}
 
 #[test]
-fn metallic_roughness_maps_to_lucent_kinds() {
+fn materials_become_gltf_pbr_with_every_texture_and_layer() {
     let m = described(MATERIALS);
     let names: Vec<&str> = m.iter().map(|(d, _)| d.name.get_ref().as_str()).collect();
     assert_eq!(
         names,
         [
             "gltf:Glass",
-            "gltf:Frosted",
-            "gltf:Gold",
-            "gltf:Brushed",
-            "gltf:Chalk",
-            "gltf:Shiny",
-            "gltf:Lamp",
-            "gltf:Shiny#2",
-            "gltf:8"
+            "gltf:Textured",
+            "gltf:Layers",
+            "gltf:Cutout",
+            "gltf:Veil",
+            "gltf:5"
         ]
     );
-    let kinds: Vec<MaterialKind> = m.iter().map(|(d, _)| d.kind()).collect();
-    use MaterialKind::*;
-    assert_eq!(
-        kinds,
-        [
-            Dielectric,
-            RoughDielectric,
-            Conductor,
-            RoughConductor,
-            Diffuse,
-            Plastic,
-            Diffuse,
-            RoughConductor, // glTF's defaults: metallic 1, roughness 1
-            RoughConductor,
-        ]
-    );
+    assert!(m.iter().all(|(d, _)| d.kind() == MaterialKind::Pbr));
 
     let (glass, notes) = &m[0];
-    assert_eq!(ior(glass), Some(1.33));
+    assert_eq!(glass.ior.as_ref().map(|v| v.get_ref().0), Some(1.33));
+    assert_eq!(number(&glass.transmission), Some(1.0));
+    assert_eq!(glass.volume, Some(true));
     assert_eq!(
-        glass.transmittance,
+        (number(&glass.metallic), number(&glass.roughness)),
+        (Some(0.0), Some(0.0))
+    );
+    assert_eq!(
+        glass.base_color,
         Some(TextureDesc::Solid(Rgb::new(0.9, 0.95, 1.0)))
     );
-    assert_eq!(roughness(glass), None);
     assert_eq!(glass.two_sided, Some(false));
     assert!(notes.is_empty(), "{notes:?}");
 
-    let (frosted, notes) = &m[1];
-    assert_eq!(ior(frosted), Some(1.5));
-    assert_eq!(roughness(frosted), Some(0.25));
-    assert_eq!(frosted.transmittance, Some(TextureDesc::Solid(Rgb::WHITE)));
+    // Factors times textures; each texture read in its encoding and channel.
+    let (t, notes) = &m[1];
+    assert!(notes.is_empty(), "{notes:?}");
+    let base = t.base_color.as_ref().unwrap();
+    assert!(
+        matches!(base, TextureDesc::Product(f, _) if **f == TextureDesc::Solid(Rgb::new(0.5, 1.0, 1.0)))
+    );
+    let b = image(base);
+    assert_eq!(
+        (b.file.as_str(), b.encoding),
+        ("base.png", Some(Encoding::Srgb))
+    );
+    assert_eq!(b.placement.scale, Some([2.0, 3.0]));
+    assert_eq!(b.placement.offset, Some([0.5, 0.0]));
+    assert!((b.placement.rotation.unwrap() + 0.5f32.to_degrees()).abs() < 1e-4);
+    let metallic = image(t.metallic.as_ref().unwrap().get_ref());
+    assert_eq!(
+        (metallic.file.as_str(), metallic.channel),
+        ("orm.png", Some(Channel::B))
+    );
+    assert_eq!(metallic.wrap, Some([Wrap::Clamp, Wrap::Mirror]));
+    assert_eq!(metallic.filter, Some(Filter::Nearest));
+    // roughnessFactor 1 times green: the texture alone.
+    let rough = t.roughness.as_ref().unwrap().get_ref();
+    assert!(
+        matches!(rough, TextureDesc::Image(i) if i.channel == Some(Channel::G) && i.encoding == Some(Encoding::Linear))
+    );
+    assert_eq!(
+        image(t.normal_map.as_ref().unwrap().get_ref()).file,
+        "normal.png"
+    );
+    assert_eq!(t.normal_scale.as_ref().map(|s| s.get_ref().0), Some(0.75));
+    let glow = t.emission.as_ref().unwrap();
+    assert!(
+        matches!(glow, TextureDesc::Product(f, _) if **f == TextureDesc::Solid(Rgb::new(4.0, 2.0, 0.0)))
+    );
+    assert_eq!(image(glow).file, "glow.png");
+    assert_eq!(t.two_sided, Some(true));
+
+    let (layers, notes) = &m[2];
+    assert_eq!(number(&layers.clearcoat), Some(1.0));
+    assert_eq!(number(&layers.clearcoat_roughness), Some(0.1));
+    assert_eq!(
+        layers
+            .clearcoat_normal_scale
+            .as_ref()
+            .map(|s| s.get_ref().0),
+        Some(2.0)
+    );
+    assert_eq!(
+        layers.sheen_color,
+        Some(TextureDesc::Solid(Rgb::new(0.5, 0.25, 1.0)))
+    );
+    assert_eq!(number(&layers.sheen_roughness), Some(0.4));
+    assert_eq!(layers.specular, Some(TextureDesc::gray(0.5)));
+    assert_eq!(
+        layers.specular_color,
+        Some(TextureDesc::Solid(Rgb::new(1.0, 0.5, 0.5)))
+    );
     assert_eq!(
         notes,
-        &[
-            "material 1 (`Frosted`): transmissionFactor 0.75 is rounded to 1: rendered as `roughdielectric`"
-        ]
+        &["material 2 (`Layers`): KHR_materials_iridescence: iridescence is not rendered"]
     );
 
-    let (gold, _) = &m[2];
+    // MASK: the constant alpha 0.2 under the cutoff 0.25 is a hole everywhere.
     assert_eq!(
-        gold.specular,
-        Some(TextureDesc::Solid(Rgb::new(1.0, 0.8, 0.25)))
+        m[3].0.opacity.as_ref().map(|o| o.get_ref().clone()),
+        Some(TextureDesc::gray(0.0))
     );
+    // BLEND: the alpha; the embedded image is a note, its factor kept.
+    let (veil, notes) = &m[4];
     assert_eq!(
-        (gold.eta.clone(), gold.k.clone(), roughness(gold)),
+        veil.opacity.as_ref().map(|o| o.get_ref().clone()),
+        Some(TextureDesc::gray(0.4))
+    );
+    assert_eq!(veil.base_color, None);
+    assert!(
+        notes.iter().any(|n| n.contains("image 4 is embedded")),
+        "{notes:?}"
+    );
+
+    // glTF's defaults: a white rough metal.
+    let (plain, _) = &m[5];
+    assert_eq!(
+        (
+            plain.base_color.clone(),
+            plain.metallic.clone(),
+            plain.roughness.clone()
+        ),
         (None, None, None)
     );
-    assert_eq!(gold.transmittance, None);
-
-    // A metal is opaque: its transmission is not a note, and not a dielectric.
-    let (brushed, notes) = &m[3];
-    assert_eq!(roughness(brushed), Some(0.4f32 * 0.4));
-    assert!(notes.is_empty(), "{notes:?}");
-
-    let (chalk, _) = &m[4];
-    assert_eq!(
-        chalk.reflectance,
-        Some(TextureDesc::Solid(Rgb::new(0.5, 0.25, 0.125)))
-    );
-    assert_eq!((ior(chalk), roughness(chalk)), (None, None));
-    assert_eq!(chalk.two_sided, Some(true));
-
-    let (shiny, _) = &m[5];
-    assert_eq!(
-        shiny.reflectance,
-        Some(TextureDesc::Solid(Rgb::new(0.2, 0.4, 0.6)))
-    );
-    assert_eq!(ior(shiny), Some(1.5));
-    assert_eq!(roughness(shiny), Some(0.3f32 * 0.3));
-
-    let (lamp, notes) = &m[6];
-    assert_eq!(
-        lamp.emission,
-        Some(TextureDesc::Solid(Rgb::new(4.0, 2.0, 0.0)))
-    );
-    assert_eq!(
-        notes,
-        &["material 6 (`Lamp`): metallicFactor 0.25 is rounded to 0: rendered as `diffuse`"]
-    );
-    assert_eq!(m[5].0.emission, None);
-
-    let (_, notes) = &m[7];
-    assert_eq!(
-        notes,
-        &["material 7 (`Shiny`): alpha mode Blend is not rendered: opaque"]
-    );
-    assert_eq!(roughness(&m[8].0), Some(1.0));
 }
 
 #[test]

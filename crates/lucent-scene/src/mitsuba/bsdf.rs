@@ -9,6 +9,8 @@
 //! | `twosided` around one BSDF / two BSDFs | that BSDF with `two_sided = true` / with `back` |
 //! | `blendbsdf` (`weight`, two BSDFs) | `blend` (`weight`, `materials`) |
 //! | `mask` (`opacity`, one BSDF) | that BSDF with `opacity` |
+//! | `principled` (`base_color`, `roughness`, `anisotropic`, `metallic`, `spec_trans`, `spec_tint`, `sheen`, `sheen_tint`, `flatness`, `clearcoat`, `clearcoat_gloss`, `eta` or `specular`) | `principled` (the same names, `ior` or `specular`) |
+//! | `principledthin` (`base_color`, `roughness`, `anisotropic`, `spec_trans`, `diff_trans`, `spec_tint`, `sheen`, `sheen_tint`, `flatness`, `eta`) | `principledthin` (the same names, `ior`) |
 //! | `bumpmap` (a texture, `scale`, one BSDF) / `normalmap` (`normalmap`, one BSDF) | that BSDF with `bump_map`, `bump_scale` / `normal_map` |
 //!
 //! Every parameter Mitsuba textures may be a `<texture>` (see `mitsuba/texture.rs`).
@@ -48,6 +50,8 @@ pub const TYPES: &[&str] = &[
     "mask",
     "bumpmap",
     "normalmap",
+    "principled",
+    "principledthin",
 ];
 
 /// Deepest nesting of BSDFs (`twosided` in `twosided` …), against reference cycles.
@@ -273,6 +277,10 @@ pub fn describe<'a>(
             }
             m.two_sided = Some(false);
         }
+        "principled" | "principledthin" => {
+            principled(cx, &p, &mut m)?;
+            silent = SAMPLING_RATES;
+        }
         "twosided" => {
             let inner = p.take("bsdf");
             match inner[..] {
@@ -387,6 +395,67 @@ pub fn describe<'a>(
     }
     p.finish(&mut cx.warnings, silent);
     Ok(m)
+}
+
+/// The principled BSDFs' lobe-sampling weights, which change noise and not the image.
+const SAMPLING_RATES: &[&str] = &[
+    "diffuse_reflectance_sampling_rate",
+    "specular_reflectance_sampling_rate",
+    "spec_trans_sampling_rate",
+    "diff_trans_sampling_rate",
+    "clearcoat_sampling_rate",
+    "main_specular_sampling_rate",
+];
+
+/// Mitsuba's `principled` or `principledthin`: every parameter a texture but the index
+/// (`eta`, or `principled`'s `specular`).
+fn principled<'a>(
+    cx: &mut Convert<'a>,
+    p: &Plugin<'a>,
+    m: &mut MaterialDesc,
+) -> Result<(), LoadError> {
+    let thin = p.kind == "principledthin";
+    m.kind = Some(spanned(if thin {
+        MaterialKind::PrincipledThin
+    } else {
+        MaterialKind::Principled
+    }));
+    let mut unit = |name: &str| -> Result<Option<Spanned<TextureDesc>>, LoadError> {
+        Ok(param(cx, p, name)?.map(spanned))
+    };
+    m.roughness = unit("roughness")?;
+    m.anisotropic = unit("anisotropic")?;
+    m.spec_trans = unit("spec_trans")?;
+    m.spec_tint = unit("spec_tint")?;
+    m.sheen = unit("sheen")?;
+    m.sheen_tint = unit("sheen_tint")?;
+    m.flatness = unit("flatness")?;
+    if thin {
+        m.diff_trans = unit("diff_trans")?;
+    } else {
+        m.metallic = unit("metallic")?;
+        m.clearcoat = unit("clearcoat")?;
+        m.clearcoat_gloss = unit("clearcoat_gloss")?;
+    }
+    m.base_color = param(cx, p, "base_color")?;
+    let eta = p.float("eta")?;
+    let specular = if thin { None } else { p.float("specular")? };
+    match (eta, specular) {
+        (Some(_), Some(_)) => {
+            return Err(p
+                .el
+                .loc
+                .error("give a principled bsdf either `eta` or `specular`, not both"));
+        }
+        (Some(eta), None) => m.ior = finite(eta),
+        (None, Some(s)) => m.specular = Some(TextureDesc::gray(s as f32)),
+        (None, None) => {}
+    }
+    // The BSDF tells its sides apart itself (from inside, only the dielectric's reflection).
+    if !thin {
+        m.two_sided = Some(false);
+    }
+    Ok(())
 }
 
 /// A conductor's `material` (default `none`: Mitsuba's perfect mirror) or `eta` and `k`.

@@ -52,11 +52,15 @@ pub mod microfacet;
 mod classic;
 mod conductor;
 mod dielectric;
+pub mod gltf_pbr;
 mod lambert;
 mod plastic;
+pub mod principled;
+pub mod principled_thin;
 mod rough_conductor;
 mod rough_dielectric;
 pub mod rough_plastic;
+pub mod sheen;
 mod thin_dielectric;
 
 #[cfg(test)]
@@ -65,8 +69,12 @@ mod chi2;
 mod tests;
 
 pub use frame::Frame;
+pub use gltf_pbr::GltfPbr;
 pub use microfacet::{Distribution, Microfacet};
+pub use principled::Principled;
+pub use principled_thin::PrincipledThin;
 pub use rough_plastic::RoughCoat;
+pub use sheen::{Sheen, SheenAlbedo};
 
 use classic::Classic;
 use conductor::Conductor;
@@ -212,6 +220,14 @@ pub enum Bsdf<'a> {
         /// The coat: index, microfacets and tables.
         coat: &'a RoughCoat,
     },
+    /// The Disney principled BSDF, as Mitsuba's `principled` computes it.
+    Principled(Principled),
+    /// glTF 2.0's metallic-roughness BRDF (with its specular, ior and transmission layers).
+    Gltf(GltfPbr),
+    /// A sheen layer (glTF's `KHR_materials_sheen`).
+    Sheen(Sheen),
+    /// The thin-sheet Disney BSDF, as Mitsuba's `principledthin` computes it.
+    PrincipledThin(PrincipledThin),
     /// The Whitted material's coefficients as lobes for a path tracer: Lambert `kd`, a
     /// normalised Phong lobe `ks` of exponent `shininess`, a mirror `kr` and a refraction `kt`
     /// through index `eta` (reflecting on total internal reflection). The coefficients are used
@@ -243,6 +259,10 @@ enum Model<'a> {
     ThinDielectric(ThinDielectric),
     Plastic(Plastic),
     RoughPlastic(RoughPlastic<'a>),
+    Principled(Principled),
+    PrincipledThin(PrincipledThin),
+    Gltf(GltfPbr),
+    Sheen(Sheen),
     Classic(Classic),
 }
 
@@ -293,6 +313,10 @@ impl<'a> Bsdf<'a> {
                 nonlinear,
                 coat,
             } => Model::RoughPlastic(RoughPlastic::new(diffuse, specular, nonlinear, coat)),
+            Bsdf::Principled(p) => Model::Principled(p),
+            Bsdf::PrincipledThin(p) => Model::PrincipledThin(p),
+            Bsdf::Gltf(p) => Model::Gltf(p),
+            Bsdf::Sheen(p) => Model::Sheen(p),
             Bsdf::Classic {
                 kd,
                 ks,
@@ -315,6 +339,10 @@ impl<'a> Bsdf<'a> {
             Model::RoughDielectric(b) => b.eval(wo, wi, mode),
             Model::Plastic(b) => b.eval(wo, wi),
             Model::RoughPlastic(b) => b.eval(wo, wi),
+            Model::Principled(b) => b.eval(wo, wi, mode),
+            Model::PrincipledThin(b) => b.eval(wo, wi),
+            Model::Gltf(b) => b.eval(wo, wi, mode),
+            Model::Sheen(b) => b.eval(wo, wi),
             Model::Classic(b) => b.eval(wo, wi),
         };
         debug_assert!(f.is_finite(), "{self:?}.eval({wo}, {wi}) = {f:?}");
@@ -333,6 +361,10 @@ impl<'a> Bsdf<'a> {
             Model::RoughDielectric(b) => b.pdf(wo, wi),
             Model::Plastic(b) => b.pdf(wo, wi),
             Model::RoughPlastic(b) => b.pdf(wo, wi),
+            Model::Principled(b) => b.pdf(wo, wi),
+            Model::PrincipledThin(b) => b.pdf(wo, wi),
+            Model::Gltf(b) => b.pdf(wo, wi),
+            Model::Sheen(b) => b.pdf(wo, wi),
             Model::Classic(b) => b.pdf(wo, wi),
         };
         debug_assert!(p.is_finite() && p >= 0.0, "{self:?}.pdf({wo}, {wi}) = {p}");
@@ -353,6 +385,10 @@ impl<'a> Bsdf<'a> {
             Model::ThinDielectric(b) => b.sample(wo, u_lobe),
             Model::Plastic(b) => b.sample(wo, u_lobe, u),
             Model::RoughPlastic(b) => b.sample(wo, u_lobe, u),
+            Model::Principled(b) => b.sample(wo, u_lobe, u, mode),
+            Model::PrincipledThin(b) => b.sample(wo, u_lobe, u),
+            Model::Gltf(b) => b.sample(wo, u_lobe, u, mode),
+            Model::Sheen(b) => b.sample(wo, u),
             Model::Classic(b) => b.sample(wo, u_lobe, u, mode),
         }?;
         debug_assert!(
@@ -371,7 +407,13 @@ impl<'a> Bsdf<'a> {
     /// True when every lobe is a Dirac delta (light sampling is useless there).
     pub fn is_delta(&self) -> bool {
         match self.model() {
-            Model::Lambert(_) | Model::RoughConductor(_) | Model::RoughPlastic(_) => false,
+            Model::Lambert(_)
+            | Model::RoughConductor(_)
+            | Model::RoughPlastic(_)
+            | Model::Principled(_)
+            | Model::PrincipledThin(_)
+            | Model::Gltf(_)
+            | Model::Sheen(_) => false,
             Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => true,
             Model::RoughDielectric(b) => b.is_delta(),
             Model::Plastic(b) => b.is_delta(),
@@ -384,7 +426,13 @@ impl<'a> Bsdf<'a> {
     /// a Whitted material's `kr` and `kt` beside its `kd`).
     pub fn delta_share(&self, wo: Vec3) -> f32 {
         match self.model() {
-            Model::Lambert(_) | Model::RoughConductor(_) | Model::RoughPlastic(_) => 0.0,
+            Model::Lambert(_)
+            | Model::RoughConductor(_)
+            | Model::RoughPlastic(_)
+            | Model::Principled(_)
+            | Model::PrincipledThin(_)
+            | Model::Gltf(_)
+            | Model::Sheen(_) => 0.0,
             Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => 1.0,
             Model::RoughDielectric(b) => f32::from(u8::from(b.is_delta())),
             Model::Plastic(b) => b.delta_share(wo),
@@ -405,6 +453,11 @@ impl<'a> Bsdf<'a> {
             | Bsdf::RoughDielectric { .. }
             | Bsdf::ThinDielectric { .. } => true,
             Bsdf::Classic { kt, .. } => !kt.is_black(),
+            // The principled BSDF's inside is seen only through its transmission; the thin one
+            // is the same from both sides by itself.
+            Bsdf::Principled(p) => p.spec_trans > 0.0 && p.metallic < 1.0,
+            Bsdf::PrincipledThin(_) => true,
+            Bsdf::Gltf(p) => p.transmits(),
             _ => false,
         }
     }

@@ -48,11 +48,7 @@ impl<'a> Vertex<'a> {
     pub fn new(scene: &'a Scene, dir: Vec3, hit: SurfaceHit, footprint: f32) -> Self {
         let m = &scene.materials[hit.material as usize];
         let at = scene.tex_coords(m, &hit, footprint);
-        let geometry = Geometry {
-            n: hit.shading_normal,
-            dpdu: hit.dpdu,
-            dpdv: hit.dpdv,
-        };
+        let geometry = Geometry::of_hit(&hit);
         let bsdf = Scattering::new(m, geometry, hit.normal, &at, &scene.images, dir);
         Self {
             hit,

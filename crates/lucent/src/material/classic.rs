@@ -9,6 +9,7 @@
 //! | smooth conductor | `kr = specular·F0(η, k)` |
 //! | rough conductor | a Phong highlight `ks = specular·F0`, `shininess` of the roughness |
 //! | dielectric, thin dielectric | `kr = specular·F0`, `kt = transmittance·(1 − F0)`, `ior = η` (smooth) |
+//! | principled (thin) | `kd` = base colour × the diffuse share, a Phong highlight `ks` of the metallic and dielectric reflection, `kt` the transmission |
 //! | blend | the weighted mean of both sides' coefficients |
 //! | two-sided, normal and bump maps | their (front) surface's |
 //!
@@ -169,6 +170,67 @@ pub(super) fn nearest(
                 ..Classic::black()
             };
             (c, None)
+        }
+        Surface::Principled(p) => {
+            // The diffuse part as kd, the dielectric and metallic reflection as a highlight.
+            let metallic = mean(&p.metallic).mean();
+            let trans = mean(&p.spec_trans).mean();
+            let base = mean(&p.base_color);
+            let diffuse = (1.0 - metallic) * (1.0 - trans);
+            let alpha = mean(&p.roughness).mean().powi(2).max(1e-3);
+            let c = Classic {
+                ka: base * diffuse,
+                kd: Texture::Product(
+                    Box::new(p.base_color.clone()),
+                    Box::new(Texture::from(diffuse)),
+                ),
+                ks: base * metallic + Rgb::gray((1.0 - metallic) * dielectric_f0(p.eta)),
+                shininess: phong_exponent(alpha),
+                kt: base.map(f32::sqrt) * ((1.0 - metallic) * trans),
+                ior: if trans > 0.0 { p.eta } else { 1.0 },
+                ..Classic::black()
+            };
+            (c, Some(Approximation::Rough))
+        }
+        Surface::Gltf(p) => {
+            // A metal's reflection and a dielectric's diffuse colour and coat.
+            let metallic = mean(&p.metallic).mean();
+            let trans = mean(&p.transmission).mean();
+            let base = mean(&p.base_color);
+            let diffuse = (1.0 - metallic) * (1.0 - trans);
+            let alpha = mean(&p.roughness).mean().powi(2).max(1e-3);
+            let f0 = dielectric_f0(p.ior);
+            let c = Classic {
+                ka: base * diffuse,
+                kd: Texture::Product(
+                    Box::new(p.base_color.clone()),
+                    Box::new(Texture::from(diffuse)),
+                ),
+                ks: base * metallic + Rgb::gray((1.0 - metallic) * f0),
+                shininess: phong_exponent(alpha),
+                kt: base * ((1.0 - metallic) * trans),
+                ior: if trans > 0.0 && p.volume { p.ior } else { 1.0 },
+                ..Classic::black()
+            };
+            (c, Some(Approximation::Rough))
+        }
+        Surface::PrincipledThin(p) => {
+            let trans = mean(&p.spec_trans).mean();
+            let base = mean(&p.base_color);
+            let alpha = mean(&p.roughness).mean().powi(2).max(1e-3);
+            let c = Classic {
+                ka: base * (1.0 - trans),
+                kd: Texture::Product(
+                    Box::new(p.base_color.clone()),
+                    Box::new(Texture::from(1.0 - trans)),
+                ),
+                ks: Rgb::gray(trans * dielectric_f0(mean(&p.eta).mean())),
+                shininess: phong_exponent(alpha),
+                kt: base * trans,
+                ior: 1.0,
+                ..Classic::black()
+            };
+            (c, Some(Approximation::Rough))
         }
         Surface::Blend {
             weight,

@@ -15,11 +15,15 @@
 //! its weight and shading frame.
 
 mod classic;
+mod gltf;
 pub mod metals;
+mod principled;
 mod scattering;
 mod shading;
 
 pub use classic::Approximation;
+pub use gltf::GltfMaps;
+pub use principled::{PrincipledMaps, PrincipledThinMaps};
 pub use scattering::{Part, Scattering, ScatteringSample, Side, Terminator};
 pub use shading::{Geometry, facing};
 
@@ -128,6 +132,12 @@ pub enum Surface {
         /// The rough coat with its tables; `None` for a smooth coat.
         coat: Option<Arc<RoughCoat>>,
     },
+    /// The Disney principled BSDF (Mitsuba `principled`).
+    Principled(Box<PrincipledMaps>),
+    /// The thin-sheet Disney BSDF (Mitsuba `principledthin`).
+    PrincipledThin(Box<PrincipledThinMaps>),
+    /// glTF 2.0's metallic-roughness material with its extensions' layers.
+    Gltf(Box<GltfMaps>),
     /// `first·(1 − weight) + second·weight` (Mitsuba `blendbsdf`).
     Blend {
         /// The share of `second`, a number in `[0, 1]`.
@@ -221,7 +231,11 @@ impl Surface {
     /// Whether any leaf can transmit light (glass): such surfaces take no side flipping.
     pub fn transmits(&self) -> bool {
         match self {
-            Surface::Dielectric { .. } | Surface::ThinDielectric { .. } => true,
+            Surface::Dielectric { .. }
+            | Surface::ThinDielectric { .. }
+            | Surface::PrincipledThin(_) => true,
+            Surface::Principled(p) => p.spec_trans.mean(&[]).max_channel() > 0.0,
+            Surface::Gltf(p) => p.transmission.mean(&[]).max_channel() > 0.0,
             Surface::Blend { first, second, .. } => first.transmits() || second.transmits(),
             Surface::TwoSided { front, back } => front.transmits() || back.transmits(),
             Surface::NormalMap { inner, .. } | Surface::BumpMap { inner, .. } => inner.transmits(),
@@ -275,6 +289,9 @@ impl Surface {
                 f(diffuse);
                 f(specular);
             }
+            Surface::Principled(p) => p.textures().into_iter().for_each(f),
+            Surface::PrincipledThin(p) => p.textures().into_iter().for_each(f),
+            Surface::Gltf(p) => p.textures().into_iter().for_each(f),
             Surface::Blend {
                 weight,
                 first,

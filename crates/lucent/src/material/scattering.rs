@@ -9,6 +9,7 @@
 use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
 
+use super::gltf::GltfMaps;
 use super::shading::{Geometry, facing};
 use super::{Material, Surface};
 use crate::Rgb;
@@ -332,36 +333,117 @@ impl<'a> Resolve<'_, 'a> {
                 let (bumped, t) = self.perturbed(g, g.bumped(grad, ng));
                 self.surface(inner, weight, bumped, flipped, Some(t));
             }
+            Surface::Gltf(maps) => self.gltf(maps, weight, g, flipped, terminator),
             leaf => {
                 let Some(bsdf) = self.leaf(leaf) else { return };
-                // A two-sided reflector scatters on whichever side the ray arrives.
-                let flip = !flipped
-                    && self.side == Side::Back
-                    && self.material.two_sided
-                    && !bsdf.transmits();
-                let (n, ng) = if flip || flipped {
-                    (if flip { -g.n } else { g.n }, -self.ng)
-                } else {
-                    (g.n, self.ng)
-                };
-                let n = facing(n, ng, self.wo);
-                let frame = Frame::from_normal_tangent(n, g.dpdu);
-                if self.out.is_full() {
-                    return;
-                }
-                let terminator = terminator.map(|t| Terminator {
-                    base: if flip { -t.base } else { t.base },
-                    ..t
-                });
-                self.out.push(Part {
-                    weight,
-                    frame,
-                    ng,
-                    bsdf,
-                    terminator,
-                });
+                self.push(bsdf, weight, g, flipped, terminator, 0.0);
             }
         }
+    }
+
+    /// Adds a part: `bsdf` in the frame of `g` (turned to the back for a two-sided reflector
+    /// hit from behind, the viewer kept above its horizon, its tangent turned by `rotation`
+    /// radians towards the bitangent).
+    fn push(
+        &mut self,
+        bsdf: Bsdf<'a>,
+        weight: f32,
+        g: Geometry,
+        flipped: bool,
+        terminator: Option<Terminator>,
+        rotation: f32,
+    ) {
+        if weight.is_nan() || weight <= 0.0 || self.out.is_full() {
+            return;
+        }
+        // A two-sided reflector scatters on whichever side the ray arrives.
+        let flip =
+            !flipped && self.side == Side::Back && self.material.two_sided && !bsdf.transmits();
+        let (n, ng) = if flip || flipped {
+            (if flip { -g.n } else { g.n }, -self.ng)
+        } else {
+            (g.n, self.ng)
+        };
+        let n = facing(n, ng, self.wo);
+        let mut frame = Frame::from_normal_tangent(n, g.dpdu);
+        if rotation != 0.0 {
+            let (sin, cos) = rotation.sin_cos();
+            let s = frame.s * cos + frame.t * sin;
+            frame = Frame::from_normal_tangent(n, s);
+        }
+        let terminator = terminator.map(|t| Terminator {
+            base: if flip { -t.base } else { t.base },
+            ..t
+        });
+        self.out.push(Part {
+            weight,
+            frame,
+            ng,
+            bsdf,
+            terminator,
+        });
+    }
+
+    /// glTF's material: the base, the sheen on it and the clearcoat on both, as parts (see
+    /// `material/gltf.rs`).
+    fn gltf(
+        &mut self,
+        maps: &'a GltfMaps,
+        weight: f32,
+        g: Geometry,
+        flipped: bool,
+        terminator: Option<Terminator>,
+    ) {
+        let color = if self.material.vertex_colors {
+            self.at.color
+        } else {
+            Rgb::WHITE
+        };
+        let layers = maps.at(self.at, self.images, color);
+        let mut below = weight;
+        if let Some((cc, facets)) = layers.clearcoat {
+            let coat = match &maps.clearcoat_normals {
+                Some((normals, strength)) => {
+                    let point = TexCoords {
+                        duv: [Vec2::ZERO; 2],
+                        ..*self.at
+                    };
+                    g.normal_mapped(normals.eval(&point, self.images), *strength)
+                }
+                None => g,
+            };
+            let c = coat.n.dot(self.wo).abs().min(1.0);
+            let f = 0.04 + 0.96 * (1.0 - c).powi(5);
+            let w = cc * f;
+            let mirror = Bsdf::RoughConductor {
+                eta: Rgb::BLACK,
+                k: Rgb::WHITE,
+                specular: Rgb::WHITE,
+                microfacet: facets,
+            };
+            self.push(mirror, weight * w, coat, flipped, terminator, 0.0);
+            below *= 1.0 - w;
+        }
+        if let Some(sheen) = layers.sheen {
+            let scale = match &maps.sheen_albedo {
+                Some(table) => {
+                    let e = table.albedo(g.n.dot(self.wo).abs(), sheen.roughness);
+                    1.0 - sheen.color.max_channel() * e
+                }
+                None => 1.0,
+            };
+            self.push(Bsdf::Sheen(sheen), below, g, flipped, terminator, 0.0);
+            below *= scale.max(0.0);
+        }
+        let rotation = maps.anisotropy_rotation;
+        self.push(
+            Bsdf::Gltf(layers.base),
+            below,
+            g,
+            flipped,
+            terminator,
+            rotation,
+        );
     }
 
     /// A map's perturbed geometry `p` of `g` made safe as Mitsuba's `normalmap` and `bumpmap`
@@ -476,7 +558,18 @@ impl<'a> Resolve<'_, 'a> {
                     nonlinear: *nonlinear,
                 },
             },
-            Surface::Blend { .. }
+            Surface::Principled(p) => {
+                let mut lobes = p.at(at, images);
+                lobes.base_color *= color;
+                Bsdf::Principled(lobes)
+            }
+            Surface::PrincipledThin(p) => {
+                let mut lobes = p.at(at, images);
+                lobes.base_color *= color;
+                Bsdf::PrincipledThin(lobes)
+            }
+            Surface::Gltf(_)
+            | Surface::Blend { .. }
             | Surface::TwoSided { .. }
             | Surface::NormalMap { .. }
             | Surface::BumpMap { .. } => return None,

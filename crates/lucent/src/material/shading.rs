@@ -24,21 +24,49 @@ const MIN_COS: f32 = 1e-2;
 pub struct Geometry {
     /// The unit shading normal.
     pub n: Vec3,
-    /// `∂p/∂u`: the tangent the shading frame follows.
+    /// `∂p/∂u`: the tangent the shading frame follows (a mesh's own tangent where it has
+    /// one, at the length of `∂p/∂u`).
     pub dpdu: Vec3,
     /// `∂p/∂v`.
     pub dpdv: Vec3,
+    /// Which way a normal map's `+y` points: `1` along `n × dpdu` (Mitsuba's frame, and glTF's
+    /// for unmirrored uvs), `−1` against it (a glTF tangent's `w` of −1: mirrored uvs).
+    pub handedness: f32,
+}
+
+impl Geometry {
+    /// The shading geometry of a hit: its shading normal and uv tangents, and the mesh's own
+    /// tangent frame in place of `dpdu` where it has one.
+    pub fn of_hit(hit: &crate::shape::SurfaceHit) -> Geometry {
+        let (dpdu, handedness) = match hit.tangent {
+            Some(t) => {
+                let len = hit.dpdu.length();
+                let len = if len > 0.0 { len } else { 1.0 };
+                match t.truncate().try_normalize() {
+                    Some(d) => (d * len, t.w.signum()),
+                    None => (hit.dpdu, 1.0),
+                }
+            }
+            None => (hit.dpdu, 1.0),
+        };
+        Geometry {
+            n: hit.shading_normal,
+            dpdu,
+            dpdv: hit.dpdv,
+            handedness,
+        }
+    }
 }
 
 impl Geometry {
     /// The geometry with its normal read from a tangent-space normal map texel `texel`
-    /// (`2·texel − 1`, its x and y scaled by `strength`), in the frame (tangent `dpdu`, `n × s`,
-    /// `n`), as Mitsuba's `normalmap` does.
+    /// (`2·texel − 1`, its x and y scaled by `strength`), in the frame (tangent `dpdu`,
+    /// `handedness·(n × s)`, `n`): Mitsuba's `normalmap`, and glTF's `normalTexture`.
     pub fn normal_mapped(&self, texel: Rgb, strength: f32) -> Geometry {
         let frame = crate::bsdf::Frame::from_normal_tangent(self.n, self.dpdu);
         let local = Vec3::new(
             (2.0 * texel.r - 1.0) * strength,
-            (2.0 * texel.g - 1.0) * strength,
+            (2.0 * texel.g - 1.0) * strength * self.handedness,
             2.0 * texel.b - 1.0,
         );
         match frame.to_world(local).try_normalize() {
@@ -116,12 +144,21 @@ mod tests {
             n: Vec3::Z,
             dpdu: Vec3::X * 2.0,
             dpdv: Vec3::Y * 2.0,
+            handedness: 1.0,
         };
         let flat = g.normal_mapped(Rgb::new(0.5, 0.5, 1.0), 1.0);
         assert!((flat.n - Vec3::Z).length() < 1e-6);
         // A texel leaning towards +x tilts the normal towards the tangent.
         let tilted = g.normal_mapped(Rgb::new(0.8, 0.5, 0.9), 1.0);
         assert!(tilted.n.x > 0.3 && tilted.n.y.abs() < 1e-6);
+        // +y of the map leans along n × t, or against it for a mirrored frame (glTF's w = −1).
+        let up = Rgb::new(0.5, 0.8, 0.9);
+        assert!(g.normal_mapped(up, 1.0).n.y > 0.3);
+        let mirrored = Geometry {
+            handedness: -1.0,
+            ..g
+        };
+        assert!(mirrored.normal_mapped(up, 1.0).n.y < -0.3);
         assert!((g.bumped(Vec2::ZERO, Vec3::Z).n - Vec3::Z).length() < 1e-6);
         // Height rising with u: p + h n leans back, its normal towards −x.
         let b = g.bumped(Vec2::new(1.0, 0.0), Vec3::Z);

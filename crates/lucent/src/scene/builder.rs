@@ -349,7 +349,12 @@ impl SceneBuilder {
                     });
                 }
             }
-            let per_vertex = [mesh.normals.len(), mesh.uvs.len(), mesh.colors.len()];
+            let per_vertex = [
+                mesh.normals.len(),
+                mesh.uvs.len(),
+                mesh.colors.len(),
+                mesh.tangents.len(),
+            ];
             if per_vertex.iter().any(|&n| n != 0 && n != count) {
                 let why = mesh.validate().err().unwrap_or_default();
                 return Err(SceneError::BadVertexData {

@@ -389,6 +389,7 @@ impl Scene {
                 SurfaceHit {
                     dpdu: plane.tangent,
                     dpdv: plane.bitangent,
+                    tangent: None,
                     t,
                     point,
                     normal: plane.normal,
@@ -416,6 +417,7 @@ impl Scene {
                 SurfaceHit {
                     dpdu,
                     dpdv,
+                    tangent: None,
                     t,
                     point,
                     normal,
@@ -500,9 +502,17 @@ impl Scene {
                     ),
                     None => (local_normal, local_shading, tangents.0, tangents.1),
                 };
+                let tangent =
+                    mesh.tangent_at(corners, hit.bary)
+                        .map(|t| match instance.transform {
+                            // A mirroring placement turns the bitangent against `n × t`.
+                            Some(m) => m.vector_to_world(t.truncate()).extend(t.w * m.handedness()),
+                            None => t,
+                        });
                 SurfaceHit {
                     dpdu,
                     dpdv,
+                    tangent,
                     t: hit.t,
                     point,
                     normal,

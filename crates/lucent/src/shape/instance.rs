@@ -59,6 +59,16 @@ impl Transform {
         self.to_world.transform_vector3(v)
     }
 
+    /// `1`, or `−1` where the transform mirrors (its linear part's determinant is negative).
+    #[inline]
+    pub fn handedness(&self) -> f32 {
+        if self.to_world.matrix3.determinant() < 0.0 {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+
     /// A unit normal from object to world space (unit again). It keeps its side of the surface
     /// even under a mirroring transform, where the winding's normal would flip.
     #[inline]

@@ -1,8 +1,8 @@
 //! Triangle meshes as flat arrays: positions and index triples, and optional per-vertex
-//! normals (smooth shading), texture coordinates and colours.
+//! normals (smooth shading), texture coordinates, colours and tangent frames.
 
 use crate::Rgb;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 use lucent_accel::Aabb;
 
 /// An indexed triangle mesh (its material is given when it is added to a scene).
@@ -23,6 +23,10 @@ pub struct Mesh {
     pub uvs: Vec<Vec2>,
     /// Per-vertex colours (linear RGB), multiplying the diffuse colour, or empty.
     pub colors: Vec<Rgb>,
+    /// Per-vertex tangent frames for normal maps, or empty: the tangent (`xyz`, along `+u`,
+    /// perpendicular to the normal) and the bitangent's handedness (`w`, `±1`: the bitangent,
+    /// along `−v`, is `w·(n × t)`), as glTF's `TANGENT` holds them.
+    pub tangents: Vec<Vec4>,
 }
 
 impl Mesh {
@@ -41,6 +45,7 @@ impl Mesh {
         let n = self.positions.len();
         for (what, len) in [
             ("normals", self.normals.len()),
+            ("tangents", self.tangents.len()),
             ("texture coordinates", self.uvs.len()),
             ("colours", self.colors.len()),
         ] {
@@ -70,6 +75,25 @@ impl Mesh {
         for n in &mut self.normals {
             *n = -*n;
         }
+        // The normal turned, `n × t` turns too, while the bitangent stays.
+        for t in &mut self.tangents {
+            t.w = -t.w;
+        }
+    }
+
+    /// The tangent frame at barycentric weights `bary` of the triangle of vertices `corners`:
+    /// the corners' tangents interpolated, the first corner's handedness. `None` without
+    /// tangents.
+    #[inline]
+    pub fn tangent_at(&self, corners: [usize; 3], bary: [f32; 3]) -> Option<Vec4> {
+        if self.tangents.is_empty() {
+            return None;
+        }
+        let t = corners
+            .iter()
+            .zip(bary)
+            .fold(Vec3::ZERO, |a, (&i, b)| a + b * self.tangents[i].truncate());
+        Some(t.extend(self.tangents[corners[0]].w))
     }
 
     /// The three vertices of triangle `i`.

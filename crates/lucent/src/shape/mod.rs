@@ -68,6 +68,10 @@ pub struct SurfaceHit {
     /// `∂p/∂v`. Both come from the shape's parametrisation: a mesh's UVs (its barycentric
     /// coordinates without them), a sphere's latitude and longitude, a plane's own frame.
     pub dpdv: Vec3,
+    /// A mesh's own tangent frame where it has one (glTF's `TANGENT`, or MikkTSpace's): the
+    /// interpolated tangent (world space, not unit) the shading frame follows instead of
+    /// `dpdu`, and in `w` the bitangent's handedness, `±1` (the bitangent is `w·(n × t)`).
+    pub tangent: Option<glam::Vec4>,
 }
 
 /// A hit's texture coordinates, or how to find them when a texture asks.

@@ -148,6 +148,13 @@ pub enum Texture {
         /// The blend.
         t: Box<Texture>,
     },
+    /// 1 where `value` (each channel) reaches `cutoff`, 0 below: glTF's alpha `MASK`.
+    Step {
+        /// The texture thresholded.
+        value: Box<Texture>,
+        /// The threshold.
+        cutoff: f32,
+    },
 }
 
 impl Texture {
@@ -165,6 +172,7 @@ impl Texture {
                 let t = t.eval_float(at, images);
                 a.eval(at, images).lerp(b.eval(at, images), t)
             }
+            Texture::Step { value, cutoff } => step(value.eval(at, images), *cutoff),
         }
     }
 
@@ -198,6 +206,8 @@ impl Texture {
                 };
                 a.mean(images).lerp(b.mean(images), t)
             }
+            // The share of texels above the cutoff is not kept; the mean's step stands in.
+            Texture::Step { value, cutoff } => step(value.mean(images), *cutoff),
         }
     }
 
@@ -217,6 +227,7 @@ impl Texture {
             Texture::UvChecker(_) | Texture::Image(_) => true,
             Texture::Product(a, b) => a.uses_uv() || b.uses_uv(),
             Texture::Mix { a, b, t } => a.uses_uv() || b.uses_uv() || t.uses_uv(),
+            Texture::Step { value, .. } => value.uses_uv(),
         }
     }
 
@@ -233,9 +244,16 @@ impl Texture {
                 b.images(out);
                 t.images(out);
             }
+            Texture::Step { value, .. } => value.images(out),
             _ => {}
         }
     }
+}
+
+/// Each channel of `c` as 1 where it reaches `cutoff`, else 0.
+fn step(c: Rgb, cutoff: f32) -> Rgb {
+    let s = |v: f32| if v >= cutoff { 1.0 } else { 0.0 };
+    Rgb::new(s(c.r), s(c.g), s(c.b))
 }
 
 impl From<Rgb> for Texture {
@@ -273,6 +291,16 @@ mod tests {
         let green = Texture::Solid(Rgb::new(0.0, 1.0, 0.0));
         assert!((green.eval_float(&at, &[]) - 0.715_16).abs() < 1e-6);
         assert!(!tinted.uses_uv() && Texture::Image(ImageMap::new(0)).uses_uv());
+        // A step is 1 from its cutoff on (the cutoff itself included), per channel.
+        let mask = |v: Rgb| Texture::Step {
+            value: Box::new(Texture::Solid(v)),
+            cutoff: 0.5,
+        };
+        assert_eq!(
+            mask(Rgb::new(0.5, 0.49, 0.9)).eval(&at, &[]),
+            Rgb::new(1.0, 0.0, 1.0)
+        );
+        assert_eq!(mask(Rgb::gray(0.2)).mean(&[]), Rgb::BLACK);
     }
 
     #[test]
