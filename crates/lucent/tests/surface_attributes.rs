@@ -13,7 +13,7 @@ use lucent::material::Material;
 use lucent::sampling::sobol::Sampler;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::Mesh;
-use lucent::texture::{ImageMap, ImageTexture, Texture};
+use lucent::texture::{Filter, ImageMap, ImageTexture, Texture};
 
 /// The triangle (0,0,0), (1,0,0), (0,1,0), facing +z, with per-vertex attributes.
 fn triangle() -> Mesh {
@@ -177,8 +177,13 @@ fn image_textures_are_looked_up_at_the_uvs_and_tinted_by_vertex_colours() {
     mesh.colors.clear();
     let mut b = SceneBuilder::new(any_camera());
     let img = b.image(image);
+    // Bilinear: the lookup at a point (the classic integrators filter over the camera's pixel
+    // footprint, and these rays are not the camera's).
     let m = b.material(Material {
-        kd: Texture::Image(ImageMap::new(img)),
+        kd: Texture::Image(ImageMap {
+            filter: Filter::Bilinear,
+            ..ImageMap::new(img)
+        }),
         ..Material::default()
     });
     b.mesh(mesh, m);
@@ -212,8 +217,13 @@ fn spheres_are_textured_at_their_lat_long_coordinates() {
         ImageTexture::new(2, 1, vec![Rgb::new(1.0, 0.0, 0.0), Rgb::new(0.0, 0.0, 1.0)]).unwrap();
     let mut b = SceneBuilder::new(any_camera());
     let img = b.image(image);
+    // Bilinear: the lookup at a point (the classic integrators filter over the camera's pixel
+    // footprint, and these rays are not the camera's).
     let m = b.material(Material {
-        kd: Texture::Image(ImageMap::new(img)),
+        kd: Texture::Image(ImageMap {
+            filter: Filter::Bilinear,
+            ..ImageMap::new(img)
+        }),
         ..Material::default()
     });
     b.sphere(

@@ -18,7 +18,8 @@
 //! where the parameter is a colour and linear where it is a number or a normal map; float files
 //! are always linear), `channel` (`"r"`, `"g"`, `"b"`, `"a"` or `"rgb"`), `wrap` (`"repeat"`,
 //! `"mirror"`, `"clamp"`, or one per axis `["repeat", "clamp"]`), `filter` (`"nearest"`,
-//! `"bilinear"`, `"trilinear"` — MIP-mapped, the default) and a placement of its texture
+//! `"bilinear"`, `"trilinear"` — MIP-mapped, `"anisotropic"` — MIP-mapped with up to 8 lookups
+//! along a stretched footprint, the default) and a placement of its texture
 //! coordinates, `uv' = offset + R(rotation)·(scale ∘ uv)` (`scale`, `offset` as `[u, v]`,
 //! `rotation` in degrees). A uv checkerboard takes the same placement.
 
@@ -223,6 +224,7 @@ fn filter_name(f: Filter) -> &'static str {
         Filter::Nearest => "nearest",
         Filter::Bilinear => "bilinear",
         Filter::Trilinear => "trilinear",
+        Filter::Anisotropic => "anisotropic",
     }
 }
 
@@ -382,6 +384,7 @@ impl<'de> Visitor<'de> for TextureVisitor {
                         ("nearest", Filter::Nearest),
                         ("bilinear", Filter::Bilinear),
                         ("trilinear", Filter::Trilinear),
+                        ("anisotropic", Filter::Anisotropic),
                     ];
                     image.filter = Some(parse_name("filter", &name, &table)?);
                 }

@@ -6,7 +6,7 @@
 //! | `checkerboard` (`color0` 0.4, `color1` 0.2, `to_uv`) | `{ checkerboard = { even, odd }, … }` |
 //! | `mesh_attribute` (`name = "vertex_color"`) | `{ vertex_color = true }` |
 //!
-//! Mitsuba's `bilinear` filter has no MIP-maps; lucent's default trilinear filter narrows its
+//! Mitsuba's `bilinear` filter has no MIP-maps; lucent's default (anisotropic, MIP-mapped) filter narrows its
 //! footprint as samples accumulate and gives the same image at high sample counts, without
 //! aliasing at low ones, so `bilinear` is read as lucent's default. A `to_uv` must be a
 //! scale, rotation and offset (no shear, no mirror): the placement lucent describes.

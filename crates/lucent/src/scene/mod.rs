@@ -266,11 +266,14 @@ impl Scene {
         }
     }
 
-    /// The diffuse colour of `m` at `hit`: its texture there (a point lookup), times the
-    /// mesh's vertex colour where the material takes it.
+    /// The diffuse colour of `m` at `hit`: its texture there filtered over the camera's
+    /// one-pixel footprint (the classic integrators trace no ray differentials, and take
+    /// pbrt-v4's camera approximation at every bounce; a pixel's few samples then see the
+    /// texture's average over it rather than aliasing), times the mesh's vertex colour where
+    /// the material takes it.
     #[inline]
     pub fn diffuse(&self, m: &Material, hit: &SurfaceHit) -> Rgb {
-        let at = self.tex_coords(m, hit, 0.0);
+        let at = self.tex_coords(m, hit, 1.0);
         let kd = m.kd.eval(&at, &self.images);
         if m.vertex_colors { kd * hit.color } else { kd }
     }

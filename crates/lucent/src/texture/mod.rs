@@ -87,7 +87,7 @@ impl ImageMap {
             image,
             transform: UvTransform::IDENTITY,
             wrap: [Wrap::Repeat; 2],
-            filter: Filter::Trilinear,
+            filter: Filter::Anisotropic,
             channel: Channel::Rgb,
         }
     }
