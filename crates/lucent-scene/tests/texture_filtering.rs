@@ -135,6 +135,9 @@ fn mip_maps_keep_a_receding_checker_from_aliasing_and_shimmering() {
             );
         }
         // Long footprints probed along their length blur less than one trilinear lookup.
-        assert!(anisotropic.0 < trilinear.0, "{integrator}: {anisotropic:?} vs {trilinear:?}");
+        assert!(
+            anisotropic.0 < trilinear.0,
+            "{integrator}: {anisotropic:?} vs {trilinear:?}"
+        );
     }
 }

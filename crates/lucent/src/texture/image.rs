@@ -325,7 +325,9 @@ impl ImageTexture {
                     return self.trilinear(uv, long, wrap);
                 }
                 // Probes cover the long axis (±major) in steps no longer than the short one.
-                let n = (long / (2.0 * minor).max(1e-6)).ceil().clamp(1.0, MAX_PROBES as f32);
+                let n = (long / (2.0 * minor).max(1e-6))
+                    .ceil()
+                    .clamp(1.0, MAX_PROBES as f32);
                 let width = (long / n).max(2.0 * minor);
                 let count = n as usize;
                 let mut sum = Texel {
