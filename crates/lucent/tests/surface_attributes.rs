@@ -9,7 +9,7 @@ use lucent::Rgb;
 use lucent::accel::{AccelKind, Ray, TraversalStats};
 use lucent::integrator::{Integrator, RayStats, Whitted};
 use lucent::light::{Light, PointLight};
-use lucent::material::Material;
+use lucent::material::{Material, Surface};
 use lucent::sampling::sobol::Sampler;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::Mesh;
@@ -111,11 +111,25 @@ fn shading_normals_follow_the_instance_transform() {
     );
 }
 
+/// A flat-normal-mapped white Lambertian: a material that needs the surface's tangents.
+fn normal_mapped() -> Material {
+    Material {
+        surface: Surface::NormalMap {
+            normals: Texture::Solid(Rgb::new(0.5, 0.5, 1.0)),
+            strength: 1.0,
+            inner: Box::new(Surface::Diffuse {
+                reflectance: Texture::Solid(Rgb::WHITE),
+            }),
+        },
+        ..Material::diffuse(Rgb::WHITE)
+    }
+}
+
 #[test]
 fn mesh_tangents_are_interpolated_and_a_mirror_turns_their_handedness() {
     let scene = scene_with(
         triangle(),
-        Material::diffuse(Rgb::WHITE),
+        normal_mapped(),
         AccelKind::Wide,
         Affine3A::IDENTITY,
     );
@@ -124,12 +138,7 @@ fn mesh_tangents_are_interpolated_and_a_mirror_turns_their_handedness() {
     assert!((t - Vec4::new(0.75, 0.25, 0.0, 1.0)).length() < 1e-5, "{t}");
     // Mirrored in x (and seen from the same side): the tangent mirrors, the handedness turns.
     let mirror = Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0));
-    let scene = scene_with(
-        triangle(),
-        Material::diffuse(Rgb::WHITE),
-        AccelKind::Wide,
-        mirror,
-    );
+    let scene = scene_with(triangle(), normal_mapped(), AccelKind::Wide, mirror);
     let t = hit_at(&scene, -0.25, 0.5).tangent.unwrap();
     assert!(
         (t - Vec4::new(-0.75, 0.25, 0.0, -1.0)).length() < 1e-5,
@@ -137,13 +146,20 @@ fn mesh_tangents_are_interpolated_and_a_mirror_turns_their_handedness() {
     );
     let mut flat = triangle();
     flat.tangents.clear();
+    let scene = scene_with(flat, normal_mapped(), AccelKind::Wide, Affine3A::IDENTITY);
+    assert_eq!(hit_at(&scene, 0.25, 0.5).tangent, None);
+    // A material whose frame does not matter (isotropic, untextured) skips the tangents.
     let scene = scene_with(
-        flat,
+        triangle(),
         Material::diffuse(Rgb::WHITE),
         AccelKind::Wide,
         Affine3A::IDENTITY,
     );
-    assert_eq!(hit_at(&scene, 0.25, 0.5).tangent, None);
+    let hit = hit_at(&scene, 0.25, 0.5);
+    assert_eq!(
+        (hit.tangent, hit.dpdu, hit.dpdv),
+        (None, Vec3::ZERO, Vec3::ZERO)
+    );
 }
 
 #[test]

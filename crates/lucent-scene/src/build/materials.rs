@@ -146,8 +146,12 @@ impl<'d> Materials<'d> {
         let surface = self.surface_of(m, ctx, 0)?;
         let (mut material, approx) = if d.kind() == MaterialKind::Whitted {
             let mut c = classic(m, ctx)?;
+            // The classic integrators shade with the surface's own normal.
+            let approx = surface
+                .perturbs_normal()
+                .then_some(Approximation::NormalMap);
             c.surface = surface;
-            (c, None)
+            (c, approx)
         } else {
             Material::physically_based(surface, ctx.builder.images())
         };
@@ -262,6 +266,16 @@ impl<'d> Materials<'d> {
         let Some(&m) = self.by_name.get(name) else {
             return Err(ctx.source.error(span, format!("unknown material `{name}`")));
         };
+        // A whitted material's surface reads the coefficients of the material it is shaded
+        // as: inside another, they would be the other's.
+        if m.get_ref().kind() == MaterialKind::Whitted {
+            return Err(ctx.source.error(
+                span,
+                format!(
+                    "`{name}` is a `whitted` material: `back` and a blend's `materials` name physically based ones"
+                ),
+            ));
+        }
         self.surface_of(m, ctx, depth + 1)
     }
 }

@@ -315,7 +315,7 @@ fn approximation_warnings(
     for (reason, what) in [
         (
             Approximation::Rough,
-            "rendered smooth (glass) or with a Phong highlight (metal, plastic)",
+            "rendered smooth (glass) or with a Phong highlight (the other kinds)",
         ),
         (
             Approximation::Blend,

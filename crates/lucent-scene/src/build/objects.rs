@@ -18,6 +18,7 @@ pub struct MeshKey {
     part: Option<String>,
     smooth: bool,
     flipped: bool,
+    flip_v: bool,
 }
 
 /// Meshes already stored: their id in the scene builder.
@@ -49,6 +50,7 @@ pub fn add_object(
         ("scale", span(&d.scale)),
         ("motion", span(&d.motion)),
         ("uv_axes", span(&d.uv_axes)),
+        ("flip_v", d.flip_v.map(|_| o.span())),
     ];
     const PLACED: [&str; 5] = ["flip_normals", "transform", "translate", "rotate", "scale"];
     let mut takes: Vec<&str> = match d.kind {
@@ -59,7 +61,9 @@ pub fn add_object(
             .into_iter()
             .chain(PLACED)
             .collect(),
-        ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => PLACED.to_vec(),
+        ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
+            PLACED.iter().copied().chain(["flip_v"]).collect()
+        }
     };
     if let (ObjectKind::Plane, Some(m)) = (d.kind, &d.motion) {
         return Err(ctx.source.error(
@@ -186,6 +190,7 @@ pub fn add_object(
                     part: d.part.as_ref().map(|p| p.get_ref().clone()),
                     smooth: d.smooth.unwrap_or(true),
                     flipped,
+                    flip_v: false,
                 }
             } else {
                 MeshKey {
@@ -193,6 +198,7 @@ pub fn add_object(
                     part: None,
                     smooth: true,
                     flipped,
+                    flip_v: d.flip_v.unwrap_or(false),
                 }
             };
             // A mesh placed many times is read and stored once: the objects are instances of it.
@@ -212,6 +218,11 @@ pub fn add_object(
                     };
                     if !key.smooth {
                         mesh.normals.clear();
+                    }
+                    if key.flip_v {
+                        for uv in &mut mesh.uvs {
+                            uv.y = 1.0 - uv.y;
+                        }
                     }
                     if flipped {
                         mesh.flip();

@@ -1,8 +1,8 @@
 //! The unit shapes of `[[object]]` kinds `rectangle`, `cube` and `disk`, as meshes with normals
-//! and texture coordinates (Mitsuba's conventions: placed by a transform; a rectangle's
-//! `(u, v) = ((x + 1)/2, (y + 1)/2)`, so `v` grows with y and, as image rows run downwards,
-//! an image appears upside down unless its placement flips it, as in Mitsuba; a disk's are
-//! planar, Mitsuba's polar).
+//! and texture coordinates (Mitsuba's shapes, placed by a transform). A rectangle's
+//! `(u, v) = ((x + 1)/2, (1 − y)/2)`: image rows run downwards, so an image stands upright on
+//! it; an object's `flip_v` gives Mitsuba's `v = (y + 1)/2`. A disk's are planar (Mitsuba's
+//! polar), each cube face a rectangle's.
 
 use glam::{Vec2, Vec3};
 use lucent::shape::Mesh;
@@ -20,7 +20,7 @@ pub fn rectangle() -> Mesh {
     ];
     let uvs = positions
         .iter()
-        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (p.y + 1.0)))
+        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (1.0 - p.y)))
         .collect();
     Mesh {
         positions,
@@ -47,7 +47,7 @@ pub fn cube() -> Mesh {
             for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
                 mesh.positions.push(n + a * u + b * v);
                 mesh.normals.push(n);
-                mesh.uvs.push(Vec2::new(0.5 * (a + 1.0), 0.5 * (b + 1.0)));
+                mesh.uvs.push(Vec2::new(0.5 * (a + 1.0), 0.5 * (1.0 - b)));
             }
             mesh.triangles.push([base, base + 1, base + 2]);
             mesh.triangles.push([base, base + 2, base + 3]);
@@ -69,7 +69,7 @@ pub fn disk() -> Mesh {
     mesh.uvs = mesh
         .positions
         .iter()
-        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (p.y + 1.0)))
+        .map(|p| Vec2::new(0.5 * (p.x + 1.0), 0.5 * (1.0 - p.y)))
         .collect();
     mesh
 }

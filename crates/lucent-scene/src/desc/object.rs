@@ -86,6 +86,10 @@ pub struct ObjectDesc {
     /// Mesh and shapes: turn the front side to the back (reverse every triangle).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flip_normals: Option<bool>,
+    /// Rectangle, cube, disk: `v` grows with the shape's `y` (Mitsuba's uvs, where an image
+    /// appears upside down) instead of against it (an image upright; the default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flip_v: Option<bool>,
     /// Placement: a whole affine transform (instead of scale, rotate, translate).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub transform: Option<Spanned<Matrix>>,
@@ -119,6 +123,7 @@ impl ObjectDesc {
             part: None,
             smooth: None,
             flip_normals: None,
+            flip_v: None,
             transform: None,
             translate: None,
             rotate: None,

@@ -80,7 +80,7 @@ pub struct ImageMapDesc {
     pub channel: Option<Channel>,
     /// Along u and v (default repeat).
     pub wrap: Option<[Wrap; 2]>,
-    /// Interpolation (default trilinear).
+    /// Interpolation (default anisotropic).
     pub filter: Option<Filter>,
     /// Placement of the coordinates.
     pub placement: Placement,

@@ -4,7 +4,7 @@
 //! | --- | --- |
 //! | `obj`, `ply` (`filename`, `face_normals`, `flip_normals`, `to_world`) | `mesh` (`file`, `smooth = false` for face normals, `flip_normals`, `transform`) |
 //! | `sphere` (`center`, `radius`, `to_world`) | `sphere`: `to_world · translate(center) · scale(radius)` must be a similarity; `uv_axes` its rotation, so that textures and tangents lie as in Mitsuba |
-//! | `rectangle`, `cube`, `disk` (`to_world`) | the same kinds with `transform`: Mitsuba's and lucent's canonical shapes agree (`[-1, 1]²` at z = 0 facing +z, `[-1, 1]³`, the unit disk at z = 0 facing +z) |
+//! | `rectangle`, `cube`, `disk` (`to_world`) | the same kinds with `transform` and `flip_v` (Mitsuba's uvs): the canonical shapes agree (`[-1, 1]²` at z = 0 facing +z, `[-1, 1]³`, the unit disk at z = 0 facing +z) |
 //!
 //! A sphere's `flip_normals` is not read (lucent's spheres face out), with a warning.
 //!
@@ -37,6 +37,13 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
         other => return Err(super::unknown_type(el, other)),
     };
     let mut o = ObjectDesc::new(kind, "");
+    if matches!(
+        kind,
+        ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk
+    ) {
+        // Mitsuba's v grows with the shape's y.
+        o.flip_v = Some(true);
+    }
     let to_world = p.transform("to_world")?;
     let place = |o: &mut ObjectDesc| -> Result<(), LoadError> {
         if let Some((m, loc)) = to_world

@@ -170,6 +170,29 @@ impl Filter {
         }
     }
 
+    /// `out[i] = f₁(x0 − i)`: the profile at offsets one pixel apart, as a splat needs them
+    /// (the Gaussian's tail worked out once, not per offset).
+    pub fn profiles_from(&self, x0: f32, out: &mut [f32]) {
+        match *self {
+            Filter::Gaussian { sigma, radius } => {
+                let tail = gaussian_1d(radius, sigma);
+                for (i, o) in out.iter_mut().enumerate() {
+                    let x = x0 - i as f32;
+                    *o = if x.abs() > radius {
+                        0.0
+                    } else {
+                        (gaussian_1d(x, sigma) - tail).max(0.0)
+                    };
+                }
+            }
+            _ => {
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = self.profile(x0 - i as f32);
+                }
+            }
+        }
+    }
+
     /// The filter's value at offset `(x, y)` from the pixel centre, in pixels: `f₁(x)·f₁(y)`,
     /// unnormalised (the film divides by the sum of weights), 0 beyond the radius.
     pub fn eval(&self, x: f32, y: f32) -> f32 {

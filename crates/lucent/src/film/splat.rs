@@ -69,19 +69,13 @@ impl TileSplats {
         let (px, py) = (i64::from(x) - self.x0, i64::from(y) - self.y0);
         self.film.count_sample(px as u32, py as u32);
         let Some(value) = value else { return };
-        // The filter is separable: f(x, y) = f(x, 0)·f(0, y) / f(0, 0).
-        let centre = filter.eval(0.0, 0.0);
-        if centre == 0.0 {
-            return;
-        }
+        // The filter is separable: f(x, y) = f₁(x)·f₁(y).
         let mut wx = [0.0f32; 2 * MAX_MARGIN as usize + 1];
         let mut wy = [0.0f32; 2 * MAX_MARGIN as usize + 1];
         let m = m.min(i64::from(MAX_MARGIN));
-        for k in -m..=m {
-            let i = (k + m) as usize;
-            wx[i] = filter.eval(sx - (x as f32 + k as f32 + 0.5), 0.0);
-            wy[i] = filter.eval(0.0, sy - (y as f32 + k as f32 + 0.5)) / centre;
-        }
+        let n = (2 * m + 1) as usize;
+        filter.profiles_from(sx - (x as f32 - m as f32 + 0.5), &mut wx[..n]);
+        filter.profiles_from(sy - (y as f32 - m as f32 + 0.5), &mut wy[..n]);
         for j in -m..=m {
             let fy = wy[(j + m) as usize];
             if fy == 0.0 {

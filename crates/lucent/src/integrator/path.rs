@@ -108,14 +108,7 @@ impl PathTracer {
             let hit = match beam {
                 Some(beam) if depth == 0 => scene
                     .intersect_in(beam, &ray, &mut stats.traversal)
-                    .and_then(|h| {
-                        if scene.stops(&h, &ray) {
-                            Some(h)
-                        } else {
-                            let (next, leaving) = crate::spawn::spawn_ray(&h, ray.dir);
-                            scene.intersect_opaque(&next, Some(leaving), &mut stats.traversal)
-                        }
-                    }),
+                    .and_then(|h| scene.opaque_beyond(h, &ray, &mut stats.traversal)),
                 _ => scene.intersect_opaque(&ray, from, &mut stats.traversal),
             };
             let Some(hit) = hit else {

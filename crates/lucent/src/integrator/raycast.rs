@@ -1,7 +1,8 @@
 //! Ray casting (Appel 1968): the visible surface along each ray, and nothing more.
 //!
 //! The colour is the surface's flat diffuse coefficient `kd` (its texture included), with no
-//! lighting; rays that hit nothing see the background.
+//! lighting; rays that hit nothing see the background. Cut-away surfaces (opacity) are seen
+//! through, as by every integrator.
 
 use super::RayStats;
 use crate::Rgb;
@@ -12,8 +13,10 @@ use lucent_accel::Ray;
 /// part of, if any (see [`Scene::intersect_in`]).
 pub fn radiance(scene: &Scene, beam: Option<&Beam>, ray: &Ray, stats: &mut RayStats) -> Rgb {
     let hit = match beam {
-        Some(beam) => scene.intersect_in(beam, ray, &mut stats.traversal),
-        None => scene.intersect(ray, &mut stats.traversal),
+        Some(beam) => scene
+            .intersect_in(beam, ray, &mut stats.traversal)
+            .and_then(|h| scene.opaque_beyond(h, ray, &mut stats.traversal)),
+        None => scene.intersect_opaque(ray, None, &mut stats.traversal),
     };
     match hit {
         Some(hit) => scene.diffuse(&scene.materials[hit.material as usize], &hit),

@@ -45,16 +45,19 @@ pub fn footprint_of_sample(index: u32) -> f32 {
 impl<'a> Vertex<'a> {
     /// The vertex where `ray` (travelling along `dir`) hit `hit`, its textures filtered over
     /// `footprint` times the camera's pixel footprint.
+    #[inline(always)]
     pub fn new(scene: &'a Scene, dir: Vec3, hit: SurfaceHit, footprint: f32) -> Self {
         let m = &scene.materials[hit.material as usize];
-        let at = scene.tex_coords(m, &hit, footprint);
-        let geometry = Geometry::of_hit(&hit);
-        let bsdf = Scattering::new(m, geometry, hit.normal, &at, &scene.images, dir);
-        Self {
+        let mut v = Self {
             hit,
-            bsdf,
+            bsdf: Scattering::empty(),
             wo: -dir,
-        }
+        };
+        let at = scene.tex_coords(m, &v.hit, footprint);
+        let geometry = Geometry::of_hit(&v.hit);
+        v.bsdf
+            .resolve(m, geometry, v.hit.normal, &at, &scene.images, dir);
+        v
     }
 
     /// Direct light by one light sample: `f·Le / p`, weighted by the power heuristic against

@@ -179,11 +179,14 @@ impl Whitted {
     ) -> Rgb {
         t.record.begin(kind, ray, path.weight);
         let hit = match (t.primary.take(), t.beam) {
-            (Some(hit), _) if kind == RayKind::Camera => hit,
-            (_, Some(beam)) if kind == RayKind::Camera => {
-                t.scene.intersect_in(beam, ray, &mut t.stats.traversal)
+            (Some(hit), _) if kind == RayKind::Camera => {
+                hit.and_then(|h| t.scene.opaque_beyond(h, ray, &mut t.stats.traversal))
             }
-            _ => t.scene.intersect_from(ray, from, &mut t.stats.traversal),
+            (_, Some(beam)) if kind == RayKind::Camera => t
+                .scene
+                .intersect_in(beam, ray, &mut t.stats.traversal)
+                .and_then(|h| t.scene.opaque_beyond(h, ray, &mut t.stats.traversal)),
+            _ => t.scene.intersect_opaque(ray, from, &mut t.stats.traversal),
         };
         t.record.hit(hit.as_ref());
         let color = match hit {
@@ -221,8 +224,8 @@ impl Whitted {
         let kd = scene.diffuse(m, hit);
 
         let mut color = m.ka * scene.ambient;
-        if entering {
-            color += m.ke;
+        if entering && m.emits() {
+            color += m.emission(&scene.tex_coords(m, hit, 1.0), &scene.images);
         }
         for (j, light) in scene.lights.iter().enumerate() {
             let Some(l) = light.illuminate(hit.point) else {
@@ -328,6 +331,18 @@ impl Whitted {
     ) -> Rgb {
         stats.shadow += 1;
         let (ray, from) = spawn_ray(hit, to_light);
+        if scene.has_cutouts() {
+            // Cut-away crossings let the light through: the blockers one by one, in order.
+            let mut s = Rgb::WHITE;
+            scene.stopping_surfaces(&ray, distance, Some(from), &mut stats.traversal, |b| {
+                let m = &scene.materials[b.material as usize];
+                if !m.emits() {
+                    s *= m.kt;
+                }
+                s.is_black()
+            });
+            return s;
+        }
         if let Some(beam) = beam {
             // The beam meets the same blockers in another order, so only order-free answers
             // are taken from it: an opaque blocker (black, whichever comes first), or at most

@@ -209,11 +209,40 @@ impl Surface {
         }
     }
 
-    /// Whether any texture of the tree reads texture coordinates.
+    /// Whether any texture of the tree reads texture coordinates (asked at every hit: the
+    /// common leaves are answered without visiting the tree).
+    #[inline]
     pub fn uses_uv(&self) -> bool {
-        let mut any = false;
-        self.visit_textures(&mut |t| any |= t.uses_uv());
-        any || self.perturbs_normal()
+        match self {
+            Surface::Classic => false,
+            Surface::Diffuse { reflectance } => reflectance.uses_uv(),
+            Surface::Plastic {
+                diffuse, specular, ..
+            } => diffuse.uses_uv() || specular.uses_uv(),
+            Surface::NormalMap { .. } | Surface::BumpMap { .. } => true,
+            _ => {
+                let mut any = false;
+                self.visit_textures(&mut |t| any |= t.uses_uv());
+                any || self.perturbs_normal()
+            }
+        }
+    }
+
+    /// Whether the tree's shading frame must follow the surface's tangents (anisotropic or
+    /// possibly anisotropic lobes, normal and bump maps): an isotropic BSDF works in any frame
+    /// around the normal, so hits on such surfaces skip working the tangents out.
+    #[inline]
+    pub fn needs_tangents(&self) -> bool {
+        match self {
+            Surface::Classic
+            | Surface::Diffuse { .. }
+            | Surface::Plastic { .. }
+            | Surface::ThinDielectric { .. } => false,
+            Surface::Conductor { roughness, .. } | Surface::Dielectric { roughness, .. } => {
+                roughness.is_some()
+            }
+            _ => true,
+        }
     }
 
     /// Whether the tree holds a normal or bump map.
@@ -430,11 +459,19 @@ impl Material {
     }
 
     /// Whether looking the surface's textures up needs texture coordinates.
+    #[inline(always)]
     pub fn uses_uv(&self) -> bool {
         self.kd.uses_uv()
             || self.surface.uses_uv()
             || self.emission_map.as_ref().is_some_and(Texture::uses_uv)
             || self.opacity.as_ref().is_some_and(Texture::uses_uv)
+    }
+
+    /// Whether a hit on the material needs the surface's tangents (`∂p/∂u`, `∂p/∂v`, a mesh's
+    /// tangent frame): for its textures' footprints or its shading frame.
+    #[inline(always)]
+    pub fn needs_tangents(&self) -> bool {
+        self.uses_uv() || self.surface.needs_tangents()
     }
 
     /// The coverage at `at` (1 for an opaque material).

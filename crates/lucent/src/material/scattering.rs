@@ -16,9 +16,10 @@ use crate::Rgb;
 use crate::bsdf::{Bsdf, Frame, Transport};
 use crate::texture::{ImageTexture, TexCoords};
 
-/// The most parts a resolved surface keeps (blends nested three deep); further parts are
-/// dropped with their weight.
-const MAX_PARTS: usize = 8;
+/// The most parts a resolved surface keeps (a glTF material's three layers, blends nested two
+/// deep); further parts are dropped with their weight. Kept small: a hit's parts are moved
+/// with its vertex.
+const MAX_PARTS: usize = 4;
 
 /// Which side of the surface a ray arrived on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -121,7 +122,7 @@ pub struct Scattering<'a> {
 }
 
 /// What resolving needs besides the surface.
-struct Resolve<'s, 'a> {
+struct Resolve<'s, 'a, 'o> {
     material: &'a Material,
     at: &'s TexCoords,
     images: &'s [ImageTexture],
@@ -130,7 +131,7 @@ struct Resolve<'s, 'a> {
     /// The unit direction back towards where the ray came from.
     wo: Vec3,
     side: Side,
-    out: ArrayVec<Part<'a>, MAX_PARTS>,
+    out: &'o mut ArrayVec<Part<'a>, MAX_PARTS>,
 }
 
 impl<'a> Scattering<'a> {
@@ -144,11 +145,37 @@ impl<'a> Scattering<'a> {
         images: &[ImageTexture],
         dir: Vec3,
     ) -> Self {
+        let mut s = Self::empty();
+        s.resolve(material, geometry, ng, at, images, dir);
+        s
+    }
+
+    /// Nothing scatters: a surface to [`Scattering::resolve`] into where it will stay (a
+    /// vertex's parts are a few hundred bytes, not moved once made).
+    #[inline]
+    pub fn empty() -> Self {
+        Self {
+            parts: ArrayVec::new(),
+            total: 0.0,
+        }
+    }
+
+    /// Replaces the parts by those of [`Scattering::new`] with the same arguments.
+    pub fn resolve(
+        &mut self,
+        material: &'a Material,
+        geometry: Geometry,
+        ng: Vec3,
+        at: &TexCoords,
+        images: &[ImageTexture],
+        dir: Vec3,
+    ) {
         let side = if ng.dot(dir) > 0.0 {
             Side::Back
         } else {
             Side::Front
         };
+        self.parts.clear();
         let mut r = Resolve {
             material,
             at,
@@ -156,14 +183,10 @@ impl<'a> Scattering<'a> {
             ng,
             wo: -dir,
             side,
-            out: ArrayVec::new(),
+            out: &mut self.parts,
         };
         r.surface(&material.surface, 1.0, geometry, false, None);
-        let total = r.out.iter().map(|p| p.weight).sum();
-        Self {
-            parts: r.out,
-            total,
-        }
+        self.total = self.parts.iter().map(|p| p.weight).sum();
     }
 
     /// The parts.
@@ -275,7 +298,7 @@ impl<'a> Scattering<'a> {
     }
 }
 
-impl<'a> Resolve<'_, 'a> {
+impl<'a> Resolve<'_, 'a, '_> {
     /// Adds the parts of `surface` with `weight`, shading geometry `g`, the frame already
     /// turned to the back when `flipped`, the bumps of a map above shadowing it when
     /// `terminator`.

@@ -56,6 +56,7 @@ impl Scene {
     /// The nearest surface along `ray` (leaving `from`) that stops it: [`Scene::intersect_from`]
     /// past the cut-away surfaces it crosses (`t` then counts from `ray`'s origin, up to the
     /// small offsets of the rays that go on).
+    #[inline]
     pub fn intersect_opaque(
         &self,
         ray: &Ray,
@@ -81,18 +82,45 @@ impl Scene {
         Some(hit)
     }
 
-    /// Whether anything stops `ray` (leaving `from`) before `t_max`: [`Scene::occlusion`],
-    /// except that cut-away surfaces let it through.
-    pub fn blocked(
+    /// Whether the scene has cut-out materials at all (without them every surface stops rays).
+    pub fn has_cutouts(&self) -> bool {
+        self.has_cutouts
+    }
+
+    /// `hit`, found along `ray` by a query that ignores opacity (a beam's), if it stops the
+    /// ray; else the next surface beyond it that does ([`Scene::intersect_opaque`] from there,
+    /// `t` counted from `ray`'s origin).
+    pub fn opaque_beyond(
+        &self,
+        hit: SurfaceHit,
+        ray: &Ray,
+        stats: &mut TraversalStats,
+    ) -> Option<SurfaceHit> {
+        if self.stops(&hit, ray) {
+            return Some(hit);
+        }
+        let (next, leaving) = spawn_ray(&hit, ray.dir);
+        let mut beyond = self.intersect_opaque(&next, Some(leaving), stats)?;
+        beyond.t += hit.t;
+        Some(beyond)
+    }
+
+    /// Calls `blocker(hit)` for each surface, nearest first, that stops `ray` (leaving `from`)
+    /// before `t_max`, until it returns `true`; returns whether it did. Cut-away crossings are
+    /// skipped; after [`MAX_CROSSINGS`] surfaces the walk gives up and answers `true`. (The
+    /// ordered walk of the shadow rays of integrators that weigh each blocker, where
+    /// [`Scene::occlusion`] cannot see opacity.)
+    pub fn stopping_surfaces<F>(
         &self,
         ray: &Ray,
         t_max: f32,
         from: Option<Leaving>,
         stats: &mut TraversalStats,
-    ) -> bool {
-        if !self.has_cutouts {
-            return self.occlusion(ray, t_max, from, stats, |_, _| true);
-        }
+        mut blocker: F,
+    ) -> bool
+    where
+        F: FnMut(&SurfaceHit) -> bool,
+    {
         let mut ray = *ray;
         let mut from = from;
         let mut left = t_max;
@@ -103,7 +131,7 @@ impl Scene {
             if hit.t >= left {
                 return false;
             }
-            if self.stops(&hit, &ray) {
+            if self.stops(&hit, &ray) && blocker(&hit) {
                 return true;
             }
             left -= hit.t;
@@ -112,5 +140,21 @@ impl Scene {
             from = Some(leaving);
         }
         true
+    }
+
+    /// Whether anything stops `ray` (leaving `from`) before `t_max`: [`Scene::occlusion`],
+    /// except that cut-away surfaces let it through.
+    #[inline]
+    pub fn blocked(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        from: Option<Leaving>,
+        stats: &mut TraversalStats,
+    ) -> bool {
+        if !self.has_cutouts {
+            return self.occlusion(ray, t_max, from, stats, |_, _| true);
+        }
+        self.stopping_surfaces(ray, t_max, from, stats, |_| true)
     }
 }

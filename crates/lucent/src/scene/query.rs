@@ -3,6 +3,7 @@
 use super::Beam;
 use super::{MeshAccel, Scene};
 use crate::Rgb;
+use crate::material::Material;
 use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, Uv, gamma, triangle};
 use crate::spawn::Leaving;
 use glam::{Vec2, Vec3};
@@ -378,6 +379,14 @@ impl Scene {
         }
     }
 
+    /// Whether hits on `material` need their surface's tangents (unknown indices do).
+    #[inline]
+    fn needs_tangents(&self, material: u32) -> bool {
+        self.materials
+            .get(material as usize)
+            .is_none_or(Material::needs_tangents)
+    }
+
     pub(super) fn surface(&self, ray: &Ray, candidate: &Candidate) -> SurfaceHit {
         match *candidate {
             Candidate::Plane(i, t) => {
@@ -413,7 +422,11 @@ impl Scene {
                     .get(i as usize)
                     .copied()
                     .unwrap_or_default();
-                let (dpdu, dpdv) = map.tangents(normal, sphere.radius);
+                let (dpdu, dpdv) = if self.needs_tangents(tag.material) {
+                    map.tangents(normal, sphere.radius)
+                } else {
+                    (Vec3::ZERO, Vec3::ZERO)
+                };
                 SurfaceHit {
                     dpdu,
                     dpdv,
@@ -464,6 +477,7 @@ impl Scene {
                         None => local_normal,
                     }
                 };
+                let needs_tangents = self.needs_tangents(tag.material);
                 let (uv, tangents) = if mesh.uvs.is_empty() {
                     let [a, b, c] = object;
                     (Vec2::new(b1, b2), (b - a, c - a))
@@ -473,10 +487,12 @@ impl Scene {
                         .iter()
                         .zip(hit.bary)
                         .fold(Vec2::ZERO, |a, (&t, b)| a + b * t);
-                    let tangents = triangle::uv_tangents(object, corner_uvs).unwrap_or_else(|| {
-                        let (a, b) = local_normal.any_orthonormal_pair();
-                        (a, b)
-                    });
+                    let tangents = if needs_tangents {
+                        triangle::uv_tangents(object, corner_uvs)
+                            .unwrap_or_else(|| local_normal.any_orthonormal_pair())
+                    } else {
+                        (Vec3::ZERO, Vec3::ZERO)
+                    };
                     (uv, tangents)
                 };
                 let color = if mesh.colors.is_empty() {
@@ -494,21 +510,29 @@ impl Scene {
                     _ => (here, here_error),
                 };
                 let (normal, shading_normal, dpdu, dpdv) = match instance.transform {
-                    Some(t) => (
+                    Some(t) if needs_tangents => (
                         t.normal_to_world(local_normal),
                         t.normal_to_world(local_shading),
                         t.vector_to_world(tangents.0),
                         t.vector_to_world(tangents.1),
                     ),
-                    None => (local_normal, local_shading, tangents.0, tangents.1),
+                    Some(t) => (
+                        t.normal_to_world(local_normal),
+                        t.normal_to_world(local_shading),
+                        Vec3::ZERO,
+                        Vec3::ZERO,
+                    ),
+                    None if needs_tangents => (local_normal, local_shading, tangents.0, tangents.1),
+                    None => (local_normal, local_shading, Vec3::ZERO, Vec3::ZERO),
                 };
-                let tangent =
-                    mesh.tangent_at(corners, hit.bary)
-                        .map(|t| match instance.transform {
-                            // A mirroring placement turns the bitangent against `n × t`.
-                            Some(m) => m.vector_to_world(t.truncate()).extend(t.w * m.handedness()),
-                            None => t,
-                        });
+                let tangent = needs_tangents
+                    .then(|| mesh.tangent_at(corners, hit.bary))
+                    .flatten()
+                    .map(|t| match instance.transform {
+                        // A mirroring placement turns the bitangent against `n × t`.
+                        Some(m) => m.vector_to_world(t.truncate()).extend(t.w * m.handedness()),
+                        None => t,
+                    });
                 SurfaceHit {
                     dpdu,
                     dpdv,

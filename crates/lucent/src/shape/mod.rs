@@ -67,6 +67,8 @@ pub struct SurfaceHit {
     pub dpdu: Vec3,
     /// `∂p/∂v`. Both come from the shape's parametrisation: a mesh's UVs (its barycentric
     /// coordinates without them), a sphere's latitude and longitude, a plane's own frame.
+    /// [`crate::scene::Scene`]'s queries leave both (and `tangent`) zero on meshes and spheres
+    /// whose material does not need them ([`crate::material::Material::needs_tangents`]).
     pub dpdv: Vec3,
     /// A mesh's own tangent frame where it has one (glTF's `TANGENT`, or MikkTSpace's): the
     /// interpolated tangent (world space, not unit) the shading frame follows instead of

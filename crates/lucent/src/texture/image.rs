@@ -1,6 +1,7 @@
 //! Image textures: linear RGB texels (and an optional alpha channel) looked up by texture
-//! coordinates — nearest, bilinear, or trilinear over a MIP pyramid by the footprint of the
-//! lookup — or by direction for a lat-long environment.
+//! coordinates — nearest, bilinear, trilinear over a MIP pyramid by the footprint of the
+//! lookup, or anisotropic (several trilinear lookups along it) — or by direction for a
+//! lat-long environment.
 
 use crate::Rgb;
 use glam::{Vec2, Vec3};

@@ -81,7 +81,7 @@ pub struct ImageMap {
 }
 
 impl ImageMap {
-    /// The colour of image `image` with the defaults: repeat, trilinear, untransformed.
+    /// The colour of image `image` with the defaults: repeat, anisotropic, untransformed.
     pub fn new(image: u32) -> Self {
         Self {
             image,
@@ -221,13 +221,23 @@ impl Texture {
 
     /// Whether evaluating needs the hit's texture coordinates (spheres work theirs out only
     /// then).
+    #[inline(always)]
     pub fn uses_uv(&self) -> bool {
         match self {
             Texture::Solid(_) | Texture::Checker(_) | Texture::VertexColor => false,
             Texture::UvChecker(_) | Texture::Image(_) => true,
+            _ => self.any_child_uses_uv(),
+        }
+    }
+
+    /// [`Texture::uses_uv`] of a composite texture (kept out of line: the leaves are asked at
+    /// every hit).
+    fn any_child_uses_uv(&self) -> bool {
+        match self {
             Texture::Product(a, b) => a.uses_uv() || b.uses_uv(),
             Texture::Mix { a, b, t } => a.uses_uv() || b.uses_uv() || t.uses_uv(),
             Texture::Step { value, .. } => value.uses_uv(),
+            leaf => leaf.uses_uv(),
         }
     }
 
