@@ -374,3 +374,11 @@ fn a_huge_image_is_refused_from_its_header() {
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(e.contains("huge.png") && e.contains("30000×30000"), "{e}");
 }
+
+#[test]
+fn photon_counts_are_bounded_per_iteration() {
+    let text = format!("{CAMERA}[render]\nintegrator = \"sppm\"\nphotons = 4294967295\n");
+    assert_error(&text, 6, 11, "at most 16777216 per iteration");
+    let text = format!("{CAMERA}[render]\nintegrator = \"sppm\"\nphotons = 16777216\n");
+    load(&text).unwrap();
+}

@@ -247,3 +247,41 @@ fn the_photon_mapper_gives_the_same_image_on_any_number_of_threads() {
     });
     assert_eq!(film_of(&scene, sppm, 4, 1), film_of(&scene, sppm, 4, 2));
 }
+
+/// A photon count far beyond one iteration's bound is clamped to it, and a stop request lands
+/// inside a long photon pass: the render returns, incomplete, long before the passes it was
+/// asked for could end (64 iterations of 2²⁴ photons: minutes).
+#[test]
+fn a_huge_photon_pass_is_bounded_and_stops_on_request() {
+    use lucent::render::{Hooks, render};
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::time::{Duration, Instant};
+    let scene = room(8);
+    let settings = RenderSettings {
+        integrator: Integrator::Sppm(Sppm {
+            max_depth: 10,
+            photons: u32::MAX,
+            radius: 0.0,
+        }),
+        spp: 64,
+        threads: 2,
+        ..RenderSettings::default()
+    };
+    let cancel = AtomicBool::new(false);
+    let begin = Instant::now();
+    let rendered = std::thread::scope(|s| {
+        s.spawn(|| {
+            std::thread::sleep(Duration::from_millis(300));
+            cancel.store(true, Ordering::Relaxed);
+        });
+        let hooks = Hooks {
+            cancel: &cancel,
+            progress: &|_, _| {},
+            checkpoint: None,
+        };
+        render(&scene, &settings, None, &hooks).unwrap()
+    });
+    assert!(!rendered.complete);
+    let took = begin.elapsed();
+    assert!(took < Duration::from_secs(20), "stopped after {took:?}");
+}

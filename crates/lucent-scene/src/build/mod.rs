@@ -419,6 +419,15 @@ fn render_settings(desc: &SceneDesc, source: &Source) -> Result<RenderSettings, 
                 Some(p) if *p.get_ref() == 0 => {
                     return Err(source.error(p.span(), "photons must be at least 1"));
                 }
+                Some(p) if *p.get_ref() > lucent::integrator::MAX_PHOTONS_PER_ITERATION => {
+                    return Err(source.error(
+                        p.span(),
+                        format!(
+                            "photons must be at most {} per iteration (more iterations: `[image] samples`)",
+                            lucent::integrator::MAX_PHOTONS_PER_ITERATION
+                        ),
+                    ));
+                }
                 Some(p) => *p.get_ref(),
                 None => 0,
             },

@@ -16,7 +16,7 @@ pub mod whitted;
 
 pub use debug::DebugView;
 pub use path::PathTracer;
-pub use sppm::Sppm;
+pub use sppm::{MAX_PHOTONS_PER_ITERATION, Sppm};
 pub use whitted::Whitted;
 
 use crate::Rgb;

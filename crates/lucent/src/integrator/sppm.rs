@@ -63,6 +63,15 @@ impl Default for Sppm {
 const ALPHA: f32 = 2.0 / 3.0;
 /// Photons traced together, whose deposits are added in order (fixed, for determinism).
 const CHUNK: usize = 4096;
+
+/// The most photons one iteration traces (2²⁴, a few seconds' work): more are clamped to it
+/// (the scene reader refuses them). Within an iteration, each chunk checks for a stop request
+/// and the time limit, so a long photon pass ends promptly; the interrupted iteration is
+/// dropped whole, keeping the estimate that of complete iterations.
+pub const MAX_PHOTONS_PER_ITERATION: u32 = 1 << 24;
+
+/// One chunk's photon deposits (pixel, flux) and its rays.
+type ChunkDeposits = (Vec<(u32, Rgb)>, RayStats);
 /// Salt that keeps photon samplers apart from camera samplers.
 const PHOTON_SALT: u64 = 0x5eed_f070_0f07_0f07;
 
@@ -112,7 +121,8 @@ pub fn render_sppm(
         pixels
     } else {
         sppm.photons as usize
-    };
+    }
+    .min(MAX_PHOTONS_PER_ITERATION as usize);
     let mut state = vec![
         PixelState {
             direct: Rgb::BLACK,
@@ -140,16 +150,24 @@ pub fn render_sppm(
             .map(|i| camera_path(scene, settings.seed, sppm, i, k, width))
             .collect();
         let mut points = Vec::with_capacity(pixels);
-        for (i, (vp, direct, s)) in camera.into_iter().enumerate() {
-            state[i].direct += direct;
+        let mut directs = Vec::with_capacity(pixels);
+        for (vp, direct, s) in camera {
+            directs.push(direct);
             stats += s;
             points.push(vp);
         }
         // 2. Photon pass: deposits near the visible points, chunk by chunk in order.
         let grid = Grid::new(&points, &state);
-        let chunks: Vec<(Vec<(u32, Rgb)>, RayStats)> = (0..photons.div_ceil(CHUNK))
+        let stop = || {
+            hooks.cancel.load(Ordering::Relaxed)
+                || (k > 0 && deadline.is_some_and(|d| Instant::now() >= d))
+        };
+        let chunks: Vec<Option<ChunkDeposits>> = (0..photons.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
+                if stop() {
+                    return None;
+                }
                 let mut deposits = Vec::new();
                 let mut s = RayStats::default();
                 for p in c * CHUNK..((c + 1) * CHUNK).min(photons) {
@@ -166,9 +184,16 @@ pub fn render_sppm(
                         &mut s,
                     );
                 }
-                (deposits, s)
+                Some((deposits, s))
             })
             .collect();
+        // An interrupted photon pass drops the iteration (its rays stay counted).
+        let Some(chunks) = chunks.into_iter().collect::<Option<Vec<_>>>() else {
+            break;
+        };
+        for (st, direct) in state.iter_mut().zip(directs) {
+            st.direct += direct;
+        }
         let mut flux = vec![Rgb::BLACK; pixels];
         let mut count = vec![0u32; pixels];
         for (deposits, s) in chunks {
