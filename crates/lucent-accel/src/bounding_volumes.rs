@@ -37,6 +37,9 @@ impl Accelerator for BoundingVolumes {
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         let mut hit = false;
         for (i, b) in self.boxes.iter().enumerate() {
             stats.nodes_visited += 1;
@@ -52,6 +55,9 @@ impl Accelerator for BoundingVolumes {
     where
         F: FnMut(u32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         for (i, b) in self.boxes.iter().enumerate() {
             stats.nodes_visited += 1;
             if b.hit(ray, t_max).is_some() {

@@ -36,7 +36,7 @@ impl BruteForce {
 impl Accelerator for BruteForce {
     fn closest_hit<F>(
         &self,
-        _ray: &Ray,
+        ray: &Ray,
         mut t_max: f32,
         stats: &mut TraversalStats,
         mut leaf: F,
@@ -44,6 +44,9 @@ impl Accelerator for BruteForce {
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         let mut hit = false;
         for i in 0..self.count {
             stats.primitives_tested += 1;
@@ -52,10 +55,13 @@ impl Accelerator for BruteForce {
         hit
     }
 
-    fn any_hit<F>(&self, _ray: &Ray, _t_max: f32, stats: &mut TraversalStats, mut leaf: F) -> bool
+    fn any_hit<F>(&self, ray: &Ray, _t_max: f32, stats: &mut TraversalStats, mut leaf: F) -> bool
     where
         F: FnMut(u32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         for i in 0..self.count {
             stats.primitives_tested += 1;
             if leaf(i) {

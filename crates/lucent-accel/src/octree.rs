@@ -261,6 +261,9 @@ impl Accelerator for Octree {
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         Mailbox::with(self.primitives, |mailbox| {
             let mut hit = false;
             self.walk(ray, &mut t_max, stats, |refs, exit, t_max, stats| {
@@ -282,6 +285,9 @@ impl Accelerator for Octree {
     where
         F: FnMut(u32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         let mut t_max = t_max;
         Mailbox::with(self.primitives, |mailbox| {
             self.walk(ray, &mut t_max, stats, |refs, _, _, stats| {

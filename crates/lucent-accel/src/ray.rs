@@ -23,6 +23,13 @@ impl Ray {
         }
     }
 
+    /// Whether the ray can be traced: a finite origin and a finite, non-zero direction. The
+    /// accelerators report every other ray as missing everything.
+    #[inline]
+    pub fn is_traceable(&self) -> bool {
+        self.origin.is_finite() && self.dir.is_finite() && self.dir != Vec3::ZERO
+    }
+
     /// True when a component of the direction is zero: the ray is parallel to a slab, and a
     /// slab test may meet `0 · ∞ = NaN` (see [`crate::Aabb::hit`]).
     #[inline]

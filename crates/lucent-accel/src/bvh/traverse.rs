@@ -128,6 +128,9 @@ impl Accelerator for Bvh {
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         if ray.has_parallel_axis() {
             self.closest::<true, F>(ray, t_max, stats, leaf)
         } else {
@@ -139,6 +142,9 @@ impl Accelerator for Bvh {
     where
         F: FnMut(u32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         if ray.has_parallel_axis() {
             self.any::<true, F>(ray, t_max, stats, leaf)
         } else {

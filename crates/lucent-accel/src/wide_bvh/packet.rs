@@ -87,9 +87,14 @@ impl WideTriangleBvh {
         let mut tm = [0.0f32; PACKET];
         tm[..n].copy_from_slice(&t_max[..n]);
         let bvh = &self.bvh;
+        // Rays that cannot be traced take no part: they miss.
+        let traceable = rays[..n]
+            .iter()
+            .enumerate()
+            .fold(0u32, |m, (i, r)| m | (u32::from(r.is_traceable()) << i));
         if let Some((first, count)) = bvh.root_leaf {
             for (i, leaf) in leaves.iter_mut().enumerate() {
-                if bvh.bounds.hit(&rays[i], tm[i]).is_some() {
+                if traceable & (1 << i) != 0 && bvh.bounds.hit(&rays[i], tm[i]).is_some() {
                     leaf.visit(first, count, &mut tm[i], stats);
                 }
             }
@@ -97,7 +102,7 @@ impl WideTriangleBvh {
             let pre: ArrayVec<RayPre, PACKET> = rays[..n].iter().map(RayPre::new).collect();
             let mut stack: ArrayVec<Entry, STACK_SIZE> = ArrayVec::new();
             let (mut child, mut count) = (0u32, if entry.is_empty() { 0 } else { VIRTUAL });
-            let mut active = (1u32 << n) - 1;
+            let mut active = ((1u32 << n) - 1) & traceable;
             let mut visited = 0u64;
             'walk: loop {
                 if count == 0 || count == VIRTUAL {

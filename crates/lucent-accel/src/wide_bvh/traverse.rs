@@ -420,6 +420,9 @@ impl WideBvh {
     where
         F: FnMut(u32, &mut f32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
@@ -477,6 +480,9 @@ impl WideBvh {
     where
         F: FnMut(u32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.

@@ -123,6 +123,9 @@ impl WideTriangleBvh {
         stats: &mut TraversalStats,
         entry: &[NodeW],
     ) -> Option<PackedHit> {
+        if !ray.is_traceable() {
+            return None;
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `closest_avx2` is compiled for AVX2, which the processor has.
@@ -181,6 +184,9 @@ impl WideTriangleBvh {
     where
         F: FnMut(u32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(avx) = Avx::detect() {
             // SAFETY: `any_avx2` is compiled for AVX2, which the processor has.
@@ -274,6 +280,9 @@ impl WideTriangleBvh {
         stats: &mut TraversalStats,
         entry: &[NodeW],
     ) -> Option<PackedHit> {
+        if !ray.is_traceable() {
+            return None;
+        }
         let mut leaves = NearestInPacks {
             s,
             packs: &self.packs,
@@ -299,6 +308,9 @@ impl WideTriangleBvh {
     where
         F: FnMut(u32) -> bool,
     {
+        if !ray.is_traceable() {
+            return false;
+        }
         // The pack test keeps t ≤ its limit; one ulp below t_max makes it t < t_max.
         let mut leaves = BlockersInPacks {
             s,
