@@ -125,6 +125,11 @@ impl Integrator {
         sampler: &mut Sampler,
         stats: &mut RayStats,
     ) -> Rgb {
+        // A camera ray that cannot be traced (a degenerate lens, overflowing values) gives no
+        // radiance: NaN, which every driver drops from the film and counts as non-finite.
+        if !ray.is_traceable() {
+            return Rgb::gray(f32::NAN);
+        }
         match self {
             Integrator::Raycast => raycast::radiance(scene, beam, ray, stats),
             Integrator::Whitted(w) => w.radiance_in(scene, beam, ray, stats),

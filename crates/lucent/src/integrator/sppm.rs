@@ -277,6 +277,10 @@ fn camera_path<'a>(
     let lens = sampler.next_2d();
     let mut ray = scene.camera.ray_through_lens(x + u.x, y + u.y, lens);
     stats.camera += 1;
+    if !ray.is_traceable() {
+        // As for the other integrators: NaN, so that the pixel is dropped and counted.
+        return (None, Rgb::gray(f32::NAN), stats);
+    }
     let mut from = None;
     let mut beta = Rgb::WHITE;
     let mut direct = Rgb::BLACK;
