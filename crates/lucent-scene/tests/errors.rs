@@ -382,3 +382,11 @@ fn photon_counts_are_bounded_per_iteration() {
     let text = format!("{CAMERA}[render]\nintegrator = \"sppm\"\nphotons = 16777216\n");
     load(&text).unwrap();
 }
+
+#[test]
+fn indices_of_refraction_are_bounded() {
+    let text = format!("{CAMERA}[[material]]\nname = \"g\"\ntype = \"dielectric\"\nior = 3e38\n");
+    assert_error(&text, 7, 7, "between 0.001 and 1000");
+    let text = format!("{CAMERA}[[material]]\nname = \"g\"\nkt = 1\nior = 1e-30\n");
+    assert_error(&text, 7, 7, "between 0.001 and 1000");
+}

@@ -359,17 +359,23 @@ fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(), LoadError>
     Ok(())
 }
 
-/// A positive number or its default.
-fn positive(
+/// An index of refraction: bounded so that relative indices, their squares and the refraction
+/// formula stay far from overflow (every real material lies well inside).
+fn index_of_refraction(
     ctx: &Context,
     v: &Option<Spanned<Finite>>,
     what: &str,
     default: f32,
 ) -> Result<f32, LoadError> {
+    const RANGE: std::ops::RangeInclusive<f32> = 1e-3..=1e3;
     match v {
         Some(s) if s.get_ref().0 <= 0.0 => Err(ctx
             .source
             .error(s.span(), format!("{what} must be positive"))),
+        Some(s) if !RANGE.contains(&s.get_ref().0) => Err(ctx.source.error(
+            s.span(),
+            format!("{what} must be between 0.001 and 1000 (an index of refraction)"),
+        )),
         Some(s) => Ok(s.get_ref().0),
         None => Ok(default),
     }
@@ -377,7 +383,8 @@ fn positive(
 
 /// `ior / ext_ior` (defaults 1.5 and 1).
 fn relative_ior(d: &MaterialDesc, ctx: &Context) -> Result<f32, LoadError> {
-    Ok(positive(ctx, &d.ior, "ior", 1.5)? / positive(ctx, &d.ext_ior, "ext_ior", 1.0)?)
+    Ok(index_of_refraction(ctx, &d.ior, "ior", 1.5)?
+        / index_of_refraction(ctx, &d.ext_ior, "ext_ior", 1.0)?)
 }
 
 /// The classic material of a `whitted` description (its surface set by the caller).
@@ -400,7 +407,7 @@ fn classic(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Material, Loa
         shininess: d.shininess.as_ref().map_or(0.0, |s| s.get_ref().0),
         kr: c(d.kr),
         kt: c(d.kt),
-        ior: positive(ctx, &d.ior, "ior", 1.0)?,
+        ior: index_of_refraction(ctx, &d.ior, "ior", 1.0)?,
         ..Material::default()
     })
 }
@@ -583,7 +590,7 @@ fn principled_eta(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<f32, LoadE
             m.span(),
             "give a principled material either `ior` or `specular`, not both",
         )),
-        (Some(_), None) => positive(ctx, &d.ior, "ior", 1.5),
+        (Some(_), None) => index_of_refraction(ctx, &d.ior, "ior", 1.5),
         (None, Some(TextureDesc::Solid(c)))
             if c.r == c.g && c.g == c.b && c.r > 0.0 && c.r <= 1.0 =>
         {
@@ -633,7 +640,7 @@ fn principled_thin(
         sheen_tint: bounded(ctx, &d.sheen_tint, "sheen_tint", 1.0, 0.0)?,
         flatness: bounded(ctx, &d.flatness, "flatness", 1.0, 0.0)?,
         eta: match &d.ior {
-            Some(_) => Texture::from(positive(ctx, &d.ior, "ior", 1.5)?),
+            Some(_) => Texture::from(index_of_refraction(ctx, &d.ior, "ior", 1.5)?),
             None => PrincipledThinMaps::default().eta,
         },
     })
@@ -663,7 +670,7 @@ fn pbr(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<GltfMaps, LoadErr
         base_color: color(ctx, &table, &d.base_color, 1.0)?,
         metallic: bounded(ctx, &d.metallic, "metallic", 1.0, 1.0)?,
         roughness: bounded(ctx, &d.roughness, "roughness", 1.0, 1.0)?,
-        ior: positive(ctx, &d.ior, "ior", 1.5)?,
+        ior: index_of_refraction(ctx, &d.ior, "ior", 1.5)?,
         specular,
         specular_color: color(ctx, &table, &d.specular_color, 1.0)?,
         transmission: bounded(ctx, &d.transmission, "transmission", 1.0, 0.0)?,
