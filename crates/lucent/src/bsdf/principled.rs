@@ -173,6 +173,31 @@ impl Gtr1 {
     }
 }
 
+/// The Disney diffuse lobe's shape (without `base/π` and the cosine): Burley's retro-reflective
+/// diffuse `f_diff + f_retro`, blended by `flatness` towards the Hanrahan–Krueger-like
+/// subsurface approximation, as Mitsuba's principled BSDFs compute it. `fo`, `fi` are the
+/// Schlick weights of the two directions, `cos_d` the cosine between the incoming direction and
+/// the half vector, `cos_sum` the sum of the two cosines' magnitudes.
+pub(super) fn disney_diffuse(
+    roughness: f32,
+    flatness: f32,
+    (fo, fi): (f32, f32),
+    cos_d: f32,
+    cos_sum: f32,
+) -> f32 {
+    let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
+    let rr = 2.0 * roughness * cos_d * cos_d;
+    let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
+    if flatness > 0.0 {
+        let fss90 = rr / 2.0;
+        let fss = (1.0 + (fss90 - 1.0) * fo) * (1.0 + (fss90 - 1.0) * fi);
+        let f_ss = 1.25 * (fss * (1.0 / cos_sum - 0.5) + 0.5);
+        (f_diff + f_retro) * (1.0 - flatness) + f_ss * flatness
+    } else {
+        f_diff + f_retro
+    }
+}
+
 /// Smith's GGX masking of isotropic roughness `alpha` (the clearcoat's), zero on the back of
 /// the facet.
 fn smith_ggx1(v: Vec3, m: Vec3, alpha: f32) -> f32 {
@@ -290,20 +315,15 @@ impl Principled {
             value += Rgb::gray(0.25 * self.clearcoat * fcc * gtr.d(wh) * g * cos_o.abs());
         }
         if brdf > 0.0 && reflect && front {
-            let fo = schlick_weight(cos_o.abs());
-            let fi = schlick_weight(cos_i.abs());
-            let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
+            let weights = (schlick_weight(cos_o.abs()), schlick_weight(cos_i.abs()));
             let cos_d = wh.dot(l);
-            let rr = 2.0 * self.roughness * cos_d * cos_d;
-            let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
-            let lobe = if self.flatness > 0.0 {
-                let fss90 = rr / 2.0;
-                let fss = (1.0 + (fss90 - 1.0) * fo) * (1.0 + (fss90 - 1.0) * fi);
-                let f_ss = 1.25 * (fss * (1.0 / (cos_o.abs() + cos_i.abs()) - 0.5) + 0.5);
-                (f_diff + f_retro) * (1.0 - self.flatness) + f_ss * self.flatness
-            } else {
-                f_diff + f_retro
-            };
+            let lobe = disney_diffuse(
+                self.roughness,
+                self.flatness,
+                weights,
+                cos_d,
+                cos_o.abs() + cos_i.abs(),
+            );
             value += base * (brdf * cos_o.abs() * FRAC_1_PI * lobe);
             if self.sheen > 0.0 && self.metallic < 1.0 {
                 let fd = schlick_weight(cos_d.abs());

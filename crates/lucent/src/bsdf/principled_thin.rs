@@ -19,7 +19,9 @@ use std::f32::consts::FRAC_1_PI;
 use glam::{Vec2, Vec3};
 
 use super::lambert::{cosine_pdf, sample_cosine};
-use super::principled::{compatible, r0_of_eta, schlick, schlick_weight, specular_facets, tint_of};
+use super::principled::{
+    compatible, disney_diffuse, r0_of_eta, schlick, schlick_weight, specular_facets, tint_of,
+};
 use super::{BsdfSample, fresnel};
 use crate::Rgb;
 use crate::optics::reflect;
@@ -126,20 +128,15 @@ impl PrincipledThin {
             }
         }
         if reflect && s < 1.0 && dt < 1.0 {
-            let fo = schlick_weight(cos_o.abs());
-            let fi = schlick_weight(cos_i);
-            let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
+            let weights = (schlick_weight(cos_o.abs()), schlick_weight(cos_i));
             let cos_d = wh.dot(l);
-            let rr = 2.0 * self.roughness * cos_d * cos_d;
-            let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
-            let lobe = if self.flatness > 0.0 {
-                let fss90 = rr / 2.0;
-                let fss = (1.0 + (fss90 - 1.0) * fo) * (1.0 + (fss90 - 1.0) * fi);
-                let f_ss = 1.25 * (fss * (1.0 / (cos_o.abs() + cos_i.abs()) - 0.5) + 0.5);
-                (f_diff + f_retro) * (1.0 - self.flatness) + f_ss * self.flatness
-            } else {
-                f_diff + f_retro
-            };
+            let lobe = disney_diffuse(
+                self.roughness,
+                self.flatness,
+                weights,
+                cos_d,
+                cos_o.abs() + cos_i.abs(),
+            );
             value += base * ((1.0 - s) * cos_o * FRAC_1_PI * (1.0 - dt) * lobe);
             if self.sheen > 0.0 {
                 let fd = schlick_weight(cos_d.abs());

@@ -28,6 +28,7 @@
 use super::RayStats;
 use super::record::{Cut, NoRecord, RayKind, Recorder};
 use crate::Rgb;
+use crate::material::Material;
 use crate::optics::{reflect, refract};
 use crate::scene::{Beam, Scene};
 use crate::shape::SurfaceHit;
@@ -335,10 +336,7 @@ impl Whitted {
             // Cut-away crossings let the light through: the blockers one by one, in order.
             let mut s = Rgb::WHITE;
             scene.stopping_surfaces(&ray, distance, Some(from), &mut stats.traversal, |b| {
-                let m = &scene.materials[b.material as usize];
-                if !m.emits() {
-                    s *= m.kt;
-                }
+                s *= shadow_factor(&scene.materials[b.material as usize], 1);
                 s.is_black()
             });
             return s;
@@ -387,15 +385,21 @@ impl Whitted {
             Some(from),
             &mut stats.traversal,
             |material, crossings| {
-                let m = &scene.materials[material as usize];
-                // Emitting surfaces (area lights) cast no shadows: under this integrator their
-                // light comes from a point inside them.
-                if m.ke.is_black() {
-                    s *= m.kt.powi(crossings as i32);
-                }
+                s *= shadow_factor(&scene.materials[material as usize], crossings);
                 s.is_black()
             },
         );
         s
+    }
+}
+
+/// What a blocker of `material`, crossed `crossings` times, lets through of a shadow ray: `kt`
+/// per crossing. Emitting surfaces (area lights) cast no shadows: under this integrator their
+/// light comes from a point inside them.
+fn shadow_factor(material: &Material, crossings: u32) -> Rgb {
+    if material.emits() {
+        Rgb::WHITE
+    } else {
+        material.kt.powi(crossings as i32)
     }
 }
