@@ -143,7 +143,8 @@ impl PathTracer {
             if depth > self.max_depth {
                 break;
             }
-            let v = Vertex::new(scene, ray.dir, hit, footprint);
+            let mut v = Vertex::unresolved(ray.dir, hit);
+            v.resolve(scene, footprint);
             if !v.bsdf.is_delta() {
                 l += beta * v.direct_light(scene, u_light, true, stats);
             }

@@ -45,19 +45,32 @@ pub fn footprint_of_sample(index: u32) -> f32 {
 impl<'a> Vertex<'a> {
     /// The vertex where `ray` (travelling along `dir`) hit `hit`, its textures filtered over
     /// `footprint` times the camera's pixel footprint.
-    #[inline(always)]
     pub fn new(scene: &'a Scene, dir: Vec3, hit: SurfaceHit, footprint: f32) -> Self {
-        let m = &scene.materials[hit.material as usize];
-        let mut v = Self {
+        let mut v = Self::unresolved(dir, hit);
+        v.resolve(scene, footprint);
+        v
+    }
+
+    /// The vertex with nothing scattering yet: [`Vertex::resolve`] it where it is to stay. (A
+    /// vertex is most of a kilobyte; the path tracer builds it in place rather than moving a
+    /// resolved one.)
+    #[inline(always)]
+    pub fn unresolved(dir: Vec3, hit: SurfaceHit) -> Self {
+        Self {
             hit,
             bsdf: Scattering::empty(),
             wo: -dir,
-        };
-        let at = scene.tex_coords(m, &v.hit, footprint);
-        let geometry = Geometry::of_hit(&v.hit);
-        v.bsdf
-            .resolve(m, geometry, v.hit.normal, &at, &scene.images, dir);
-        v
+        }
+    }
+
+    /// Resolves the material of the hit, as [`Vertex::new`] does.
+    #[inline(always)]
+    pub fn resolve(&mut self, scene: &'a Scene, footprint: f32) {
+        let m = &scene.materials[self.hit.material as usize];
+        let at = scene.tex_coords(m, &self.hit, footprint);
+        let geometry = Geometry::of_hit(&self.hit);
+        self.bsdf
+            .resolve(m, geometry, self.hit.normal, &at, &scene.images, -self.wo);
     }
 
     /// Direct light by one light sample: `f·Le / p`, weighted by the power heuristic against
@@ -76,7 +89,7 @@ impl<'a> Vertex<'a> {
         else {
             return Rgb::BLACK;
         };
-        let f = self.bsdf.eval(self.wo, s.wi, Transport::Radiance);
+        let (f, bsdf_pdf) = self.bsdf.eval_pdf(self.wo, s.wi, Transport::Radiance);
         if f.is_black() {
             return Rgb::BLACK;
         }
@@ -102,7 +115,7 @@ impl<'a> Vertex<'a> {
         let w = if s.delta || !mis {
             1.0
         } else {
-            power_heuristic(s.pdf, self.bsdf.pdf(self.wo, s.wi))
+            power_heuristic(s.pdf, bsdf_pdf)
         };
         f * le * (w / s.pdf)
     }

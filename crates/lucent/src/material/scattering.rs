@@ -206,6 +206,23 @@ impl<'a> Scattering<'a> {
         f
     }
 
+    /// [`Scattering::eval`] and [`Scattering::pdf`] together, in one pass over the parts.
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3, mode: Transport) -> (Rgb, f32) {
+        if self.total <= 0.0 {
+            return (Rgb::BLACK, 0.0);
+        }
+        let mut f = Rgb::BLACK;
+        let mut pdf = 0.0;
+        for p in &self.parts {
+            if let Some(i) = p.local(wi) {
+                let o = p.frame.to_local(wo);
+                f += p.bsdf.eval(o, i, mode) * (p.weight * p.shadowing(wi));
+                pdf += p.bsdf.pdf(o, i) * p.weight;
+            }
+        }
+        (f, pdf / self.total)
+    }
+
     /// The solid-angle density with which [`Scattering::sample`] draws `wi`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         if self.total <= 0.0 {
@@ -263,8 +280,7 @@ impl<'a> Scattering<'a> {
                 reflected,
             });
         }
-        let value = self.eval(wo, wi, mode);
-        let pdf = self.pdf(wo, wi);
+        let (value, pdf) = self.eval_pdf(wo, wi, mode);
         (pdf > 0.0 && !value.is_black()).then(|| ScatteringSample {
             wi,
             weight: value * (1.0 / pdf),

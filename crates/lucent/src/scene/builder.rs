@@ -1,7 +1,7 @@
 //! Collecting a scene's parts, checking them, and building the accelerators.
 
 use super::animation::{Animation, moved_sphere};
-use super::{Merged, MeshAccel, MeshEntry, ObjectTag, Scene};
+use super::{MaterialNeeds, Merged, MeshAccel, MeshEntry, ObjectTag, Scene};
 use crate::Rgb;
 use crate::camera::Camera;
 use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
@@ -556,8 +556,10 @@ impl SceneBuilder {
             })
         });
         let has_cutouts = self.materials.iter().any(|m| m.opacity.is_some());
+        let material_needs = Arc::new(self.materials.iter().map(MaterialNeeds::of).collect());
         let mut scene = Scene {
             has_cutouts,
+            material_needs,
             camera: self.camera,
             background: self.background,
             ambient: self.ambient,

@@ -158,8 +158,11 @@ pub struct Scene {
     pub background: Rgb,
     /// The ambient light `Ia`.
     pub ambient: Rgb,
-    /// Materials, referred to by index.
+    /// Materials, referred to by index; not to be changed once the scene is built (what
+    /// their hits need is worked out then: [`Scene::material_needs`]).
     pub materials: Vec<Material>,
+    /// What a hit on each material needs worked out (parallel to `materials`).
+    material_needs: Arc<Vec<MaterialNeeds>>,
     /// Light sources.
     pub lights: Vec<Light>,
     /// Images that textures refer to by index (shared between clones).
@@ -194,6 +197,26 @@ pub struct Scene {
     /// Whether any material is partly cut away (`Material::opacity`): queries then look past
     /// the surfaces a ray passes through ([`Scene::intersect_opaque`]).
     has_cutouts: bool,
+}
+
+/// What a hit on a material needs worked out, decided once when the scene is built: these are
+/// asked at every hit, and the material trees are walked to answer them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MaterialNeeds {
+    /// Texture coordinates ([`Material::uses_uv`]).
+    pub uv: bool,
+    /// The surface's tangents ([`Material::needs_tangents`]).
+    pub tangents: bool,
+}
+
+impl MaterialNeeds {
+    /// What `m`'s hits need.
+    pub fn of(m: &Material) -> Self {
+        Self {
+            uv: m.uses_uv(),
+            tangents: m.needs_tangents(),
+        }
+    }
 }
 
 /// Counts of what a scene holds, for `lucent info` and statistics.
@@ -289,7 +312,7 @@ impl Scene {
             duv: [glam::Vec2::ZERO; 2],
             color: hit.color,
         };
-        if !m.uses_uv() {
+        if !self.material_needs_of(m, hit.material).uv {
             return at;
         }
         at.uv = hit.uv();
@@ -298,6 +321,28 @@ impl Scene {
             at.duv = dp.map(|d| uv_step(hit.dpdu, hit.dpdv, d * footprint));
         }
         at
+    }
+
+    /// What a hit on material `index` needs; an unknown index needs everything.
+    #[inline]
+    pub fn material_needs(&self, index: u32) -> MaterialNeeds {
+        self.material_needs
+            .get(index as usize)
+            .copied()
+            .unwrap_or(MaterialNeeds {
+                uv: true,
+                tangents: true,
+            })
+    }
+
+    /// [`Scene::material_needs`] of `m`, which should be material `index`; worked out from `m`
+    /// itself when it is not (a material from elsewhere).
+    #[inline]
+    fn material_needs_of(&self, m: &Material, index: u32) -> MaterialNeeds {
+        match self.materials.get(index as usize) {
+            Some(own) if std::ptr::eq(own, m) => self.material_needs(index),
+            _ => MaterialNeeds::of(m),
+        }
     }
 
     /// The bounding box of every bounded shape (infinite planes are left out).

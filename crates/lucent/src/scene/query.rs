@@ -3,7 +3,6 @@
 use super::Beam;
 use super::{MeshAccel, Scene};
 use crate::Rgb;
-use crate::material::Material;
 use crate::shape::{Primitive, Roots, SurfaceHit, SurfaceId, TriangleHit, Uv, gamma, triangle};
 use crate::spawn::Leaving;
 use glam::{Vec2, Vec3};
@@ -382,9 +381,7 @@ impl Scene {
     /// Whether hits on `material` need their surface's tangents (unknown indices do).
     #[inline]
     fn needs_tangents(&self, material: u32) -> bool {
-        self.materials
-            .get(material as usize)
-            .is_none_or(Material::needs_tangents)
+        self.material_needs(material).tangents
     }
 
     pub(super) fn surface(&self, ray: &Ray, candidate: &Candidate) -> SurfaceHit {

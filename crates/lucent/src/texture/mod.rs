@@ -163,6 +163,15 @@ impl Texture {
     pub fn eval(&self, at: &TexCoords, images: &[ImageTexture]) -> Rgb {
         match self {
             Texture::Solid(c) => *c,
+            _ => self.eval_varying(at, images),
+        }
+    }
+
+    /// [`Texture::eval`] of a texture that is not [`Texture::Solid`] (kept out of line, so that
+    /// the common constant stays a load).
+    fn eval_varying(&self, at: &TexCoords, images: &[ImageTexture]) -> Rgb {
+        match self {
+            Texture::Solid(c) => *c,
             Texture::Checker(c) => c.eval(at.p),
             Texture::UvChecker(c) => c.eval(at.uv),
             Texture::Image(m) => m.eval(at, images),
