@@ -27,7 +27,10 @@ impl Ray {
     /// accelerators report every other ray as missing everything.
     #[inline]
     pub fn is_traceable(&self) -> bool {
-        self.origin.is_finite() && self.dir.is_finite() && self.dir != Vec3::ZERO
+        // `x − x` is 0 for a finite x and NaN for ±∞ and NaN: all six components in one
+        // vector test (every ray made is checked, so this is on the hot path).
+        let finite = (self.origin - self.origin) + (self.dir - self.dir);
+        finite.cmpeq(Vec3::ZERO).all() && self.dir.cmpne(Vec3::ZERO).any()
     }
 
     /// True when a component of the direction is zero: the ray is parallel to a slab, and a

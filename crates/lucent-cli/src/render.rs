@@ -161,10 +161,20 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     };
     let rendered = render(scene, &settings, plan.start, &hooks)?;
     bar.finish_and_clear();
-    if rendered.stats.rays.nonfinite > 0 {
+    let rays = rendered.stats.rays;
+    if rays.nonfinite > 0 {
+        let untraced = if rays.untraceable > 0 {
+            format!(
+                " ({} rays could not be traced: a non-finite origin or direction, as values \
+                 overflow far from the origin)",
+                rays.untraceable
+            )
+        } else {
+            String::new()
+        };
         eprintln!(
-            "warning: {} samples were NaN or infinite and were left out",
-            rendered.stats.rays.nonfinite
+            "warning: {} samples were NaN or infinite and were left out{untraced}",
+            rays.nonfinite
         );
     }
     let (w, h) = (scene.camera.width(), scene.camera.height());

@@ -1,6 +1,7 @@
 //! A camera whose rays cannot be traced (a lens and focus distance so small that the
 //! directions lose all precision) renders without a panic under every integrator, and its
-//! samples are dropped and counted as non-finite instead of drawn as a silent image.
+//! samples are dropped and counted as non-finite instead of drawn as a silent image; so do
+//! the samples whose later rays (shadow, reflected) cannot be traced.
 
 mod common;
 
@@ -11,7 +12,8 @@ use lucent::integrator::{Integrator, PathTracer, Sppm, Whitted};
 use lucent::material::Material;
 use lucent::render::RenderSettings;
 use lucent::scene::SceneBuilder;
-use lucent::shape::Sphere;
+use lucent::light::{Falloff, Light, PointLight};
+use lucent::shape::{Plane, Sphere};
 
 #[test]
 fn a_degenerate_lens_drops_and_counts_every_sample() {
@@ -45,6 +47,54 @@ fn a_degenerate_lens_drops_and_counts_every_sample() {
         assert!(rays.nonfinite > 0, "{:?}: {rays:?}", settings.integrator);
         for y in 0..8 {
             for x in 0..8 {
+                assert!(rendered.film.pixel(x, y).is_finite(), "pixel ({x}, {y})");
+            }
+        }
+    }
+}
+
+/// A wall so far away (3·10³⁸, near `f32::MAX`) that the offset off its surface overflows: the
+/// camera rays reach it, but the shadow and reflected rays from it cannot be traced. Every
+/// integrator ends those paths, counts the rays as untraceable, and drops their samples, so
+/// that no pixel is NaN and nothing is drawn as if the light were blocked.
+#[test]
+fn rays_that_overflow_at_a_far_wall_end_their_paths_and_are_counted() {
+    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 40.0, 4, 4).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    let wall = Material {
+        kr: Rgb::gray(0.5),
+        ..Material::diffuse(Rgb::gray(0.5))
+    };
+    let m = b.material(wall);
+    b.plane(
+        Plane::new(Vec3::new(0.0, 0.0, -3e38), Vec3::new(0.0, 0.0, 1.0)),
+        m,
+    );
+    b.light(Light::Point(PointLight {
+        position: Vec3::new(0.0, 1.0, 0.0),
+        intensity: Rgb::WHITE,
+        falloff: Falloff::None,
+    }));
+    let scene = b.build().unwrap();
+    for integrator in [
+        Integrator::Whitted(Whitted::default()),
+        Integrator::Path(PathTracer::default()),
+        Integrator::Sppm(Sppm::default()),
+    ] {
+        let settings = RenderSettings {
+            integrator,
+            spp: 2,
+            ..RenderSettings::default()
+        };
+        let rendered = common::render_all(&scene, &settings);
+        let rays = rendered.stats.rays;
+        assert!(
+            rays.untraceable > 0 && rays.nonfinite > 0,
+            "{:?}: {rays:?}",
+            settings.integrator
+        );
+        for y in 0..4 {
+            for x in 0..4 {
                 assert!(rendered.film.pixel(x, y).is_finite(), "pixel ({x}, {y})");
             }
         }

@@ -37,6 +37,11 @@ pub struct RayStats {
     pub refracted: u64,
     /// Samples whose radiance was NaN or infinite, dropped from the film.
     pub nonfinite: u64,
+    /// Secondary rays (reflected, refracted, shadow, photon) that could not be traced: a
+    /// non-finite origin or direction, or a zero direction ([`Ray::is_traceable`]). Each
+    /// ended its path untraced, and a camera sample it belonged to came out NaN: dropped, and
+    /// counted in `nonfinite`.
+    pub untraceable: u64,
     /// Rays of photons from the lights (the photon mapper): one per segment of a photon's path.
     pub photons: u64,
     /// Accelerator work over all rays.
@@ -57,9 +62,33 @@ impl std::ops::AddAssign for RayStats {
         self.reflected += o.reflected;
         self.refracted += o.refracted;
         self.nonfinite += o.nonfinite;
+        self.untraceable += o.untraceable;
         self.photons += o.photons;
         self.traversal += o.traversal;
     }
+}
+
+/// The radiance of a camera sample with a ray that could not be traced (see
+/// [`RayStats::untraceable`]): NaN, which every driver drops from the film and counts.
+pub(crate) const UNTRACEABLE: Rgb = Rgb::gray(f32::NAN);
+
+/// `radiance` unless `stats` counted an untraceable ray since it held `before`; then
+/// [`UNTRACEABLE`].
+#[inline]
+pub(crate) fn unless_untraceable(radiance: Rgb, stats: &RayStats, before: u64) -> Rgb {
+    if stats.untraceable == before {
+        radiance
+    } else {
+        UNTRACEABLE
+    }
+}
+
+/// Whether `ray`, made for a path, can be traced; counts it in `stats` when not.
+#[inline]
+pub(crate) fn traceable(ray: &Ray, stats: &mut RayStats) -> bool {
+    let ok = ray.is_traceable();
+    stats.untraceable += u64::from(!ok);
+    ok
 }
 
 /// The light-transport method.
@@ -128,7 +157,7 @@ impl Integrator {
         // A camera ray that cannot be traced (a degenerate lens, overflowing values) gives no
         // radiance: NaN, which every driver drops from the film and counts as non-finite.
         if !ray.is_traceable() {
-            return Rgb::gray(f32::NAN);
+            return UNTRACEABLE;
         }
         match self {
             Integrator::Raycast => raycast::radiance(scene, beam, ray, stats),

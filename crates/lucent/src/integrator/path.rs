@@ -28,7 +28,7 @@
 //! Rays that escape see the scene's environment (its background colour or image), which also
 //! lights the scene; the ambient term of the classic model is not used.
 
-use super::RayStats;
+use super::{RayStats, unless_untraceable};
 use super::vertex::{Vertex, footprint_of_sample};
 use crate::Rgb;
 use crate::bsdf::Transport;
@@ -91,6 +91,7 @@ impl PathTracer {
         sampler: &mut Sampler,
         stats: &mut RayStats,
     ) -> Rgb {
+        let untraceable = stats.untraceable;
         let mut l = Rgb::BLACK;
         let mut beta = Rgb::WHITE;
         let mut ray = *camera_ray;
@@ -164,7 +165,8 @@ impl PathTracer {
                 beta = beta / q;
             }
         }
-        l
+        // A ray of the path that could not be traced leaves its estimate incomplete: dropped.
+        unless_untraceable(l, stats, untraceable)
     }
 }
 

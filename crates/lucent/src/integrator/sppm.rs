@@ -24,7 +24,7 @@
 //! fixed chunks whose deposits are added in chunk order, and the grid of visible points is
 //! filled in pixel order — so the image does not depend on the number of threads.
 
-use super::RayStats;
+use super::{RayStats, UNTRACEABLE};
 use super::vertex::{Vertex, footprint_of_sample};
 use crate::Rgb;
 use crate::bsdf::Transport;
@@ -307,7 +307,7 @@ fn camera_path<'a>(
         };
         if p_delta <= 0.0 {
             let vp = stop(beta, v, &mut direct, &mut stats);
-            return (vp, direct, stats);
+            return untraceable_dropped(vp, direct, stats);
         }
         if depth == sppm.max_depth {
             break;
@@ -317,13 +317,28 @@ fn camera_path<'a>(
         };
         if !b.sample.delta {
             let vp = stop(beta / (1.0 - p_delta), v, &mut direct, &mut stats);
-            return (vp, direct, stats);
+            return untraceable_dropped(vp, direct, stats);
         }
         beta *= b.sample.weight;
         ray = b.ray;
         from = Some(b.from);
     }
-    (None, direct, stats)
+    untraceable_dropped(None, direct, stats)
+}
+
+/// A camera path's visible point and direct light, unless one of its rays could not be
+/// traced: then no point, and NaN direct light, so that the pixel's sample is dropped and
+/// counted as the other integrators' are.
+fn untraceable_dropped(
+    vp: Option<VisiblePoint<'_>>,
+    direct: Rgb,
+    stats: RayStats,
+) -> (Option<VisiblePoint<'_>>, Rgb, RayStats) {
+    if stats.untraceable == 0 {
+        (vp, direct, stats)
+    } else {
+        (None, UNTRACEABLE, stats)
+    }
 }
 
 /// Traces photon `p` of iteration `k`, recording `(pixel, Φ·f)` for every visible point it
@@ -383,8 +398,12 @@ fn trace_photon(
         if depth == sppm.max_depth {
             return;
         }
-        // Photon bounces count as photon rays (at the next intersection), not as these.
-        let Some(b) = v.bounce(u_bsdf, Transport::Importance, &mut RayStats::default()) else {
+        // Photon bounces count as photon rays (at the next intersection), not as these; a
+        // bounce that cannot be traced ends the photon, counted.
+        let mut bounce_stats = RayStats::default();
+        let bounce = v.bounce(u_bsdf, Transport::Importance, &mut bounce_stats);
+        stats.untraceable += bounce_stats.untraceable;
+        let Some(b) = bounce else {
             return;
         };
         let next = beta * b.sample.weight;

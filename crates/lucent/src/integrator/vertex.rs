@@ -2,7 +2,7 @@
 //! photon mapper) see it: the material resolved at a hit ([`Scattering`]), direct light by
 //! light sampling, and the next direction by BSDF sampling — free functions they share.
 
-use super::RayStats;
+use super::{RayStats, traceable};
 use super::path::power_heuristic;
 use crate::Rgb;
 use crate::bsdf::Transport;
@@ -103,6 +103,9 @@ impl<'a> Vertex<'a> {
         }
         stats.shadow += 1;
         let (ray, from) = spawn_ray(&self.hit, s.wi);
+        if !traceable(&ray, stats) {
+            return Rgb::BLACK;
+        }
         // Stop short of the light's own surface.
         let t_max = if s.distance.is_finite() {
             s.distance * (1.0 - 1e-4)
@@ -123,6 +126,7 @@ impl<'a> Vertex<'a> {
     /// The next direction, drawn from the BSDF with `(u_lobe, u)`, and the ray along it (counted
     /// as reflected or refracted in `stats`); `None` when nothing scatters, or a direction would
     /// leak through the surface.
+    #[inline(always)]
     pub fn bounce(
         &self,
         (u_lobe, u): (f32, Vec2),
@@ -134,6 +138,9 @@ impl<'a> Vertex<'a> {
             return None;
         }
         let (ray, from) = spawn_ray(&self.hit, s.wi);
+        if !traceable(&ray, stats) {
+            return None;
+        }
         if s.reflected {
             stats.reflected += 1;
         } else {

@@ -25,7 +25,7 @@
 //!   only up to `max_depth` bounces (camera rays are depth 0), and at most
 //!   [`MAX_SECONDARY_RAYS`] per camera ray.
 
-use super::RayStats;
+use super::{RayStats, traceable, unless_untraceable};
 use super::record::{Cut, NoRecord, RayKind, Recorder};
 use crate::Rgb;
 use crate::material::Material;
@@ -139,11 +139,7 @@ impl Whitted {
             stats,
             record: &mut NoRecord,
         };
-        let path = Path {
-            depth: 0,
-            weight: Rgb::WHITE,
-        };
-        self.trace(&mut t, RayKind::Camera, ray, None, &path)
+        self.trace_camera(&mut t, ray)
     }
 
     fn radiance_with<R: Recorder>(
@@ -163,11 +159,19 @@ impl Whitted {
             stats,
             record,
         };
+        self.trace_camera(&mut t, ray)
+    }
+
+    /// The radiance along camera ray `ray`: NaN (dropped and counted by the drivers) when a ray
+    /// it led to could not be traced.
+    fn trace_camera<R: Recorder>(&self, t: &mut Trace<R>, ray: &Ray) -> Rgb {
+        let untraceable = t.stats.untraceable;
         let path = Path {
             depth: 0,
             weight: Rgb::WHITE,
         };
-        self.trace(&mut t, RayKind::Camera, ray, None, &path)
+        let color = self.trace(t, RayKind::Camera, ray, None, &path);
+        unless_untraceable(color, t.stats, untraceable)
     }
 
     fn trace<R: Recorder>(
@@ -273,8 +277,10 @@ impl Whitted {
                     if let Some(child) = self.child(t, RayKind::Refracted, path, m.kt) {
                         t.stats.refracted += 1;
                         let (ray, from) = spawn_ray(hit, dir.normalize());
-                        let it = self.trace(t, RayKind::Refracted, &ray, Some(from), &child);
-                        color += m.kt * it;
+                        if traceable(&ray, t.stats) {
+                            let it = self.trace(t, RayKind::Refracted, &ray, Some(from), &child);
+                            color += m.kt * it;
+                        }
                     }
                 }
                 // Total internal reflection: the transmitted share is reflected.
@@ -290,7 +296,9 @@ impl Whitted {
             t.stats.reflected += 1;
             let r = Some(reflect(i, n)).filter(|r| r.dot(ng) > 0.0);
             let (ray, from) = spawn_ray(hit, r.unwrap_or_else(|| reflect(i, ng)).normalize());
-            color += kr * self.trace(t, RayKind::Reflected, &ray, Some(from), &child);
+            if traceable(&ray, t.stats) {
+                color += kr * self.trace(t, RayKind::Reflected, &ray, Some(from), &child);
+            }
         }
         color
     }
@@ -332,6 +340,9 @@ impl Whitted {
     ) -> Rgb {
         stats.shadow += 1;
         let (ray, from) = spawn_ray(hit, to_light);
+        if !traceable(&ray, stats) {
+            return Rgb::BLACK;
+        }
         if scene.has_cutouts() {
             // Cut-away crossings let the light through: the blockers one by one, in order.
             let mut s = Rgb::WHITE;
