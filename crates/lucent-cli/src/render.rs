@@ -165,8 +165,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     if rays.nonfinite > 0 {
         let untraced = if rays.untraceable > 0 {
             format!(
-                " ({} rays could not be traced: a non-finite origin or direction, as values \
-                 overflow far from the origin)",
+                " ({} rays could not be traced: a non-finite origin or direction)",
                 rays.untraceable
             )
         } else {
