@@ -31,6 +31,7 @@ const INT_SCALE: f32 = 256.0;
 
 /// `p` moved off the surface along `n` (unit, pointing to the side the new ray leaves on) by
 /// the error bound `error` projected on `n`, then by a few ulps.
+#[inline]
 pub fn offset_origin(p: Vec3, n: Vec3, error: Vec3) -> Vec3 {
     let p = p + n.abs().dot(error) * n;
     let offset_axis = |p: f32, n: f32| -> f32 {
@@ -60,6 +61,7 @@ pub struct Leaving {
 }
 
 /// A ray leaving the surface of `hit` along `dir` (unit), and what it leaves.
+#[inline]
 pub fn spawn_ray(hit: &SurfaceHit, dir: Vec3) -> (Ray, Leaving) {
     let outward = hit.normal.dot(dir) >= 0.0;
     let side = if outward { hit.normal } else { -hit.normal };
