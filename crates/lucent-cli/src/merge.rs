@@ -17,6 +17,14 @@ use std::process::ExitCode;
 /// at a time, so merging needs the memory of two films, whatever the number of shards.
 pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     let format = ImageFormat::from_path(&args.output)?;
+    // Before any work: the merged image must not replace a shard, which would be lost (and a
+    // later merge with it refused).
+    if let Some(part) = args.parts.iter().find(|p| same_file(p, &args.output)) {
+        bail!(
+            "{} is one of the partial films being merged: give the merged image another name",
+            part.display()
+        );
+    }
     crate::output::check_writable(&args.output)?;
     let mut merged: Option<(Film, FilmMeta, &Path)> = None;
     let mut seen: HashMap<u32, &Path> = HashMap::new();
@@ -117,4 +125,12 @@ fn check_part(path: &Path, film: &Film, meta: &FilmMeta) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Whether `a` and `b` name the same existing file (through links and `..` too).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
 }

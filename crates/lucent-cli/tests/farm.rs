@@ -306,6 +306,16 @@ fn shards_in_separate_processes_merge_to_the_same_bits() {
         &run_in(d, &["merge", "whole.pfm", "-o", "x.pfm"]),
         "whole.pfm",
     );
+    // The merged image may not replace a shard (under its own name or another path to it).
+    let shard = read("p0.exr");
+    for output in ["p0.exr", "./sub/../p0.exr"] {
+        std::fs::create_dir_all(d.join("sub")).unwrap();
+        assert_refused(
+            &run_in(d, &["merge", "p0.exr", "p1.exr", "p2.exr", "-o", output]),
+            "p0.exr is one of the partial films being merged",
+        );
+        assert!(read("p0.exr") == shard, "the shard is kept");
+    }
     assert!(!d.join("x.pfm").exists());
     let env_free = lucent()
         .current_dir(d)
