@@ -27,9 +27,9 @@ impl Ray {
     /// accelerators report every other ray as missing everything.
     #[inline]
     pub fn is_traceable(&self) -> bool {
-        // `x − x` is 0 for a finite x and NaN for ±∞ and NaN: all six components in one
+        // `0·x` is ±0 for a finite x and NaN for ±∞ and NaN: all six components in one
         // vector test (every ray made is checked, so this is on the hot path).
-        let finite = (self.origin - self.origin) + (self.dir - self.dir);
+        let finite = self.origin * 0.0 + self.dir * 0.0;
         finite.cmpeq(Vec3::ZERO).all() && self.dir.cmpne(Vec3::ZERO).any()
     }
 

@@ -396,6 +396,7 @@ fn gltf_converts_to_the_same_image() {
 
 /// Every material kind and texture slot the readers fill survives `convert`: a Mitsuba file
 /// of the rough, layered and textured BSDFs, and a TOML file of glTF's `pbr` with its layers
+/// (the thin film's thickness a mix of two numbers by a texture, as the glTF reader writes it)
 /// and a cut-out, each converted and rendered again to the same bits.
 #[test]
 fn every_material_kind_converts_to_the_same_image() {
@@ -510,6 +511,9 @@ transmission = 0.2
 ior = 1.4
 anisotropy = 0.5
 anisotropy_rotation = 0.7
+iridescence = { product = [0.8, { image = "checker.png", channel = "a", encoding = "linear" }] }
+iridescence_ior = 1.8
+iridescence_thickness = { mix = [200, 600], amount = { image = "checker.png", channel = "r", encoding = "linear" } }
 
 [[material]]
 name = "floor"

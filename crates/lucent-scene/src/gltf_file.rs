@@ -81,7 +81,7 @@ pub const IMAGE_HEIGHT: u32 = 600;
 
 /// The extensions read (others listed in `extensionsUsed` give a warning; others listed in
 /// `extensionsRequired` make the file unreadable).
-const SUPPORTED_EXTENSIONS: [&str; 10] = [
+const SUPPORTED_EXTENSIONS: [&str; 11] = [
     "KHR_lights_punctual",
     "KHR_materials_transmission",
     "KHR_materials_ior",
@@ -91,6 +91,7 @@ const SUPPORTED_EXTENSIONS: [&str; 10] = [
     "KHR_materials_clearcoat",
     "KHR_materials_sheen",
     "KHR_materials_anisotropy",
+    "KHR_materials_iridescence",
     "KHR_texture_transform",
 ];
 

@@ -390,3 +390,141 @@ fn indices_of_refraction_are_bounded() {
     let text = format!("{CAMERA}[[material]]\nname = \"g\"\nkt = 1\nior = 1e-30\n");
     assert_error(&text, 7, 7, "between 0.001 and 1000");
 }
+
+#[test]
+fn a_thin_film_is_checked_and_belongs_to_pbr() {
+    let pbr = format!("{CAMERA}[[material]]\nname = \"g\"\ntype = \"pbr\"\n");
+    load(&format!(
+        "{pbr}iridescence = 1\niridescence_ior = 1.8\niridescence_thickness = 650\n"
+    ))
+    .unwrap();
+    assert_error(
+        &format!("{pbr}iridescence = 1\niridescence_thickness = 70000\n"),
+        8,
+        25,
+        "iridescence_thickness must lie in [0, 65535]",
+    );
+    assert_error(
+        &format!("{pbr}iridescence = 1.5\n"),
+        7,
+        15,
+        "iridescence must lie in [0, 1]",
+    );
+    assert_error(
+        &format!("{pbr}iridescence_ior = 0\n"),
+        7,
+        19,
+        "iridescence_ior must be positive",
+    );
+    assert_error(
+        &format!("{CAMERA}[[material]]\nname = \"g\"\ntype = \"diffuse\"\niridescence = 1\n"),
+        7,
+        15,
+        "`iridescence` does not apply to a diffuse material",
+    );
+}
+
+// The scene sweep's findings (tests/scene_sweep.rs): values the format took that the renderer
+// could not use are refused where they are written, and directions of any length work.
+
+#[test]
+fn placements_the_renderer_cannot_invert_are_refused_at_their_scale() {
+    let rect = format!("{CAMERA}{MATERIAL}[[object]]\ntype = \"rectangle\"\nmaterial = \"m\"\n");
+    // 1e-20 on every axis: a determinant of 1e-60, 0 in f32.
+    let cause = "the placement is singular or overflows in single precision";
+    assert_error(&format!("{rect}scale = 1e-20\n"), 10, 9, cause);
+    // 1e-13: a determinant of 1e-39, whose reciprocal overflows.
+    assert_error(&format!("{rect}scale = 1e-13\n"), 10, 9, cause);
+    assert_error(&format!("{rect}scale = [1e20, 1e20, 1]\n"), 10, 9, cause);
+    let m = "transform = [1e20, 0, 0, 0, 0, 1e20, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n";
+    assert_error(&format!("{rect}{m}"), 10, 13, "determinant overflows");
+    load(&format!("{rect}scale = [1e12, 1e-12, 1]\n")).unwrap();
+    // A motion that does it at time 0 is refused at the motion.
+    let keys = "motion = { keys = [{ time = 0, scale = 1e-20 }] }\n";
+    assert_error(
+        &format!("{rect}{keys}"),
+        10,
+        10,
+        "moved to its place at time 0, the placement is singular",
+    );
+    let far =
+        "translate = [3e38, 0, 0]\nmotion = { keys = [{ time = 0, translate = [3e38, 0, 0] }] }\n";
+    assert_error(&format!("{rect}{far}"), 11, 10, "the translation overflows");
+}
+
+#[test]
+fn objects_with_a_textured_emission_cannot_move() {
+    let text = format!(
+        "{CAMERA}[[material]]\nname = \"m\"\nemission = {{ checker = {{ even = 1, odd = 0, size = 1 }} }}\n\
+         [[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n\
+         motion = {{ orbit = {{ period = 4 }} }}\n"
+    );
+    assert_error(&text, 12, 10, "an object that emits light cannot move");
+}
+
+#[test]
+fn filter_radii_are_bounded_below() {
+    for (filter, radius) in [
+        ("gaussian", "1e-30"),
+        ("mitchell", "1e-45"),
+        ("tent", "0.001"),
+    ] {
+        let text = format!("{CAMERA}[render]\nfilter = \"{filter}\"\nfilter_radius = {radius}\n");
+        assert_error(
+            &text,
+            6,
+            17,
+            "filter_radius must be between 0.01 and 16 pixels",
+        );
+        let text = format!("{CAMERA}[render]\nfilter = \"{filter}\"\nfilter_radius = 0.01\n");
+        load(&text).unwrap();
+    }
+}
+
+#[test]
+fn conductor_indices_are_bounded() {
+    let metal = format!("{CAMERA}[[material]]\nname = \"m\"\ntype = \"conductor\"\n");
+    let index = "a conductor's index of refraction";
+    assert_error(&format!("{metal}eta = 1e15\n"), 4, 1, index);
+    let k = "an extinction coefficient";
+    assert_error(&format!("{metal}eta = 1\nk = [1, 2, 1e10]\n"), 4, 1, k);
+    load(&format!("{metal}eta = 1000\nk = 1000\n")).unwrap();
+}
+
+#[test]
+fn directions_may_have_any_length() {
+    let sphere =
+        "[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n";
+    for v in ["1e-30", "1e-45", "1e30", "3e38"] {
+        let lights = format!(
+            "[[light]]\ntype = \"directional\"\ndirection = [0, -{v}, 0]\n\
+             [[light]]\ntype = \"spot\"\nposition = [0, 5, 0]\ndirection = [{v}, -{v}, 0]\ncutoff = 30\n"
+        );
+        let plane = format!(
+            "[[object]]\ntype = \"plane\"\npoint = [0, -1, 0]\nnormal = [0, {v}, 0]\nmaterial = \"m\"\n"
+        );
+        let moving = format!(
+            "[[object]]\ntype = \"cube\"\nmaterial = \"m\"\nmotion = {{ orbit = {{ axis = [0, {v}, 0], period = 4 }} }}\n"
+        );
+        let camera = format!("[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nup = [0, {v}, 0]\n");
+        let text = format!("{camera}{MATERIAL}{lights}{sphere}{plane}{moving}");
+        load(&text).unwrap_or_else(|e| panic!("{v}: {e}"));
+        // The plane faces the camera and is seen: its normal normalises, whatever its length.
+        let wall = format!(
+            "{CAMERA}{MATERIAL}[image]\nwidth = 1\nheight = 1\n[render]\nintegrator = \"raycast\"\n\
+             [[object]]\ntype = \"plane\"\npoint = [0, 0, -1]\nnormal = [0, 0, {v}]\nmaterial = \"m\"\n"
+        );
+        let file = SceneFile::parse(PathBuf::from("wall.toml"), PathBuf::new(), wall).unwrap();
+        let loaded = file.build().unwrap();
+        let cancel = std::sync::atomic::AtomicBool::new(false);
+        let hooks = lucent::render::Hooks {
+            cancel: &cancel,
+            progress: &|_, _| {},
+            checkpoint: None,
+        };
+        let film = lucent::render::render(&loaded.scene, &loaded.settings, None, &hooks)
+            .unwrap()
+            .film;
+        assert_eq!(film.pixel(0, 0).to_array(), [0.5; 3], "normal [0, 0, {v}]");
+    }
+}

@@ -466,7 +466,7 @@ fn materials_lights_and_camera_are_described() {
     let pos = a.positions(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
     let s = std::f32::consts::FRAC_1_SQRT_2;
     let rest = format!(
-        r#""extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_iridescence"],
+        r#""extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_dispersion"],
   "extensions": {{"KHR_lights_punctual": {{"lights": [
     {{"type": "point", "color": [1, 0.5, 0.25], "intensity": 683}},
     {{"type": "spot", "intensity": 1366, "spot": {{"innerConeAngle": 0.25, "outerConeAngle": 0.5}}}}
@@ -591,7 +591,7 @@ fn materials_lights_and_camera_are_described() {
     let shown = file.display().to_string();
     let w = &imported.warnings;
     for expected in [
-        "extension KHR_materials_iridescence is not supported; ignored",
+        "extension KHR_materials_dispersion is not supported; ignored",
         "mesh 0 primitive 3 is drawn as Lines, not triangles; skipped",
         "node 4: camera 1 is orthographic, which lucent does not have; ignored",
         "material 2 (`Decal`): baseColorTexture: image 1 is embedded in the file and is not extracted; the factor alone is used",

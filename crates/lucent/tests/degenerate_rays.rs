@@ -9,10 +9,10 @@ use glam::Vec3;
 use lucent::Rgb;
 use lucent::camera::Camera;
 use lucent::integrator::{Integrator, PathTracer, Sppm, Whitted};
+use lucent::light::{Falloff, Light, PointLight};
 use lucent::material::Material;
 use lucent::render::RenderSettings;
 use lucent::scene::SceneBuilder;
-use lucent::light::{Falloff, Light, PointLight};
 use lucent::shape::{Plane, Sphere};
 
 #[test]

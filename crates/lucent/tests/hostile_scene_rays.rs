@@ -54,7 +54,13 @@ fn scene() -> Scene {
         .enumerate()
     {
         let m = if i == 0 { grey } else { holey };
-        b.sphere(Sphere { center: c, radius: 0.8 }, m);
+        b.sphere(
+            Sphere {
+                center: c,
+                radius: 0.8,
+            },
+            m,
+        );
     }
     b.plane(Plane::new(Vec3::new(0.0, -2.0, 0.0), Vec3::Y), grey);
     b.plane(Plane::new(Vec3::new(0.0, 0.0, -6.0), Vec3::Z), holey);

@@ -55,10 +55,12 @@ pub fn add_lights(
         refuse_keys(ctx.source, kind, &others)?;
         let direction = |ctx: &Context| -> Result<Vec3, LoadError> {
             let dir = required(ctx.source, l.span(), kind, "direction", &d.direction)?;
-            dir.get_ref().0.try_normalize().ok_or_else(|| {
-                ctx.source
-                    .error(dir.span(), "the light's direction must not be zero")
-            })
+            super::rescaled(dir.get_ref().0)
+                .try_normalize()
+                .ok_or_else(|| {
+                    ctx.source
+                        .error(dir.span(), "the light's direction must not be zero")
+                })
         };
         let point = |ctx: &Context| -> Result<PointLight, LoadError> {
             let position = required(ctx.source, l.span(), kind, "position", &d.position)?

@@ -113,6 +113,9 @@ fn takes(kind: MaterialKind) -> &'static [&'static str] {
             "sheen_roughness",
             "anisotropy",
             "anisotropy_rotation",
+            "iridescence",
+            "iridescence_ior",
+            "iridescence_thickness",
         ],
     }
 }
@@ -329,6 +332,9 @@ fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(), LoadError>
         ("sheen_roughness", span(&d.sheen_roughness)),
         ("anisotropy", span(&d.anisotropy)),
         ("anisotropy_rotation", span(&d.anisotropy_rotation)),
+        ("iridescence", span(&d.iridescence)),
+        ("iridescence_ior", span(&d.iridescence_ior)),
+        ("iridescence_thickness", span(&d.iridescence_thickness)),
     ];
     let takes = takes(kind);
     let others: Vec<_> = keys
@@ -686,6 +692,16 @@ fn pbr(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<GltfMaps, LoadErr
             .anisotropy_rotation
             .as_ref()
             .map_or(0.0, |r| r.get_ref().0.to_radians()),
+        iridescence: bounded(ctx, &d.iridescence, "iridescence", 1.0, 0.0)?,
+        iridescence_ior: index_of_refraction(ctx, &d.iridescence_ior, "iridescence_ior", 1.3)?,
+        // Nanometres; the renderer keeps whole ones in 16 bits (`GltfPbr::film_thickness`).
+        iridescence_thickness: bounded(
+            ctx,
+            &d.iridescence_thickness,
+            "iridescence_thickness",
+            f32::from(u16::MAX),
+            400.0,
+        )?,
     })
 }
 
@@ -750,13 +766,19 @@ fn conductor_index(
             };
             Ok((Texture::Solid(Rgb::from(eta)), Texture::Solid(Rgb::from(k))))
         }
-        (None, Some(eta), k) => Ok((
-            ctx.texture(eta, table.clone(), Slot::Data)?,
-            match k {
-                Some(k) => ctx.texture(k, table, Slot::Data)?,
-                None => Texture::Solid(Rgb::BLACK),
-            },
-        )),
+        (None, Some(eta), k) => {
+            conductor_bound(ctx, &table, eta, "eta", "a conductor's index of refraction")?;
+            if let Some(k) = k {
+                conductor_bound(ctx, &table, k, "k", "an extinction coefficient")?;
+            }
+            Ok((
+                ctx.texture(eta, table.clone(), Slot::Data)?,
+                match k {
+                    Some(k) => ctx.texture(k, table, Slot::Data)?,
+                    None => Texture::Solid(Rgb::BLACK),
+                },
+            ))
+        }
         // A perfect mirror: an index of 0 with a large extinction reflects everything at every
         // angle (Mitsuba's `none` is η = 0, k = 1, which its reader says explicitly).
         (None, None, None) => Ok((Texture::Solid(Rgb::BLACK), Texture::Solid(Rgb::gray(1e4)))),
@@ -767,5 +789,30 @@ fn conductor_index(
             table,
             "give a conductor either `metal` or `eta` (and `k`), not both",
         )),
+    }
+}
+
+/// The largest `eta` and `k` of a conductor, per channel: far above every measured metal, and
+/// far below where the exact Fresnel term overflows in single precision (`(η² − k²)²` passes
+/// `f32::MAX` near 4·10⁹, and the reflectance comes out NaN).
+const MAX_CONDUCTOR_INDEX: f32 = 1000.0;
+
+/// Refuses a constant `eta` or `k` (`what`, `meaning`) with a channel above
+/// [`MAX_CONDUCTOR_INDEX`]; a texture's values are not checked here.
+fn conductor_bound(
+    ctx: &Context,
+    table: &Range<usize>,
+    v: &TextureDesc,
+    what: &str,
+    meaning: &str,
+) -> Result<(), LoadError> {
+    match v {
+        TextureDesc::Solid(c) if [c.r, c.g, c.b].iter().any(|x| *x > MAX_CONDUCTOR_INDEX) => {
+            Err(ctx.source.error(
+                table.clone(),
+                format!("{what} must be between 0 and {MAX_CONDUCTOR_INDEX} ({meaning})"),
+            ))
+        }
+        _ => Ok(()),
     }
 }

@@ -46,6 +46,13 @@ pub const RADIUS_RANGE: std::ops::RangeInclusive<f32> = 1e-8..=1e15;
 pub const MAX_SAMPLES: u32 = 1 << 20;
 /// Deepest recursion allowed.
 pub const MAX_DEPTH: u32 = 1000;
+/// The narrowest reconstruction filter, in pixels. A narrower one weighs little but the
+/// pixel's centre, and in single precision it stops working at all: a Gaussian (σ 0.5) of
+/// radius below about 2·10⁻⁴ is zero at its centre, and a Mitchell filter of radius 10⁻⁴⁵ has
+/// no integral to sample from.
+pub const MIN_FILTER_RADIUS: f32 = 0.01;
+/// The widest reconstruction filter, in pixels.
+pub const MAX_FILTER_RADIUS: f32 = lucent::film::filter::MAX_RADIUS;
 /// The longest time limit, in seconds: a year.
 pub const MAX_TIME_LIMIT: f32 = 365.0 * 24.0 * 3600.0;
 
@@ -159,7 +166,8 @@ pub fn build_with_files(
     let mut settings = render_settings(desc, source)?;
     let cam = desc.camera.get_ref();
     let (width, height) = (*desc.image.width.get_ref(), *desc.image.height.get_ref());
-    let camera = Camera::new(cam.eye.0, cam.look_at.0, cam.up.0, cam.fov.0, width, height)
+    let up = rescaled(cam.up.0);
+    let camera = Camera::new(cam.eye.0, cam.look_at.0, up, cam.fov.0, width, height)
         .and_then(|c| match cam.aperture {
             None => Ok(c),
             Some(a) => {
@@ -228,7 +236,7 @@ pub fn build_with_files(
                 format!("a material named `{name}` already exists"),
             ));
         }
-        material_ids.insert(name.as_str(), (0, Rgb::BLACK));
+        material_ids.insert(name.as_str(), (0, Rgb::BLACK, false));
     }
     let mut table = materials::Materials::new(&desc.materials);
     for m in &desc.materials {
@@ -242,7 +250,10 @@ pub fn build_with_files(
         } else {
             Rgb::BLACK
         };
-        material_ids.insert(name.as_str(), (ctx.builder.material(material), emission));
+        // A textured emission is no area light, but it glows: its objects cannot move either.
+        let glows = !material.ke.is_black();
+        let id = ctx.builder.material(material);
+        material_ids.insert(name.as_str(), (id, emission, glows));
     }
     // The physically based integrators render area lights, environments and rough materials
     // as they are.
@@ -262,7 +273,7 @@ pub fn build_with_files(
     for o in &desc.objects {
         let d = o.get_ref();
         let name = d.material.get_ref();
-        let Some(&(material, ke)) = material_ids.get(name.as_str()) else {
+        let Some(&(material, ke, glows)) = material_ids.get(name.as_str()) else {
             let known: Vec<_> = desc
                 .materials
                 .iter()
@@ -279,7 +290,8 @@ pub fn build_with_files(
             ));
         };
         let emissive = !ke.is_black();
-        if let Some(surface) = objects::add_object(&mut ctx, &mut meshes, o, material, emissive)? {
+        let added = objects::add_object(&mut ctx, &mut meshes, o, material, emissive, glows)?;
+        if let Some(surface) = added {
             emitters.push((ke, surface));
         }
     }
@@ -347,6 +359,15 @@ fn approximation_warnings(
             if names.len() == 1 { "is" } else { "are" },
         ));
     }
+}
+
+/// `v` divided by its largest magnitude, so that its largest component is ±1 (zero stays
+/// zero): a direction "of any length" (a light's `direction`, a plane's `normal`, the camera's
+/// `up`, an orbit's `axis`) then normalises in single precision, where the squared length of
+/// `[1e-30, 0, 0]` underflows to 0 and that of `[1e20, 0, 0]` overflows to infinity.
+pub(crate) fn rescaled(v: glam::Vec3) -> glam::Vec3 {
+    let largest = v.abs().max_element();
+    if largest > 0.0 { v / largest } else { v }
 }
 
 pub(crate) fn check(
@@ -530,8 +551,10 @@ fn filter(r: &RenderDesc, source: &Source) -> Result<Filter, LoadError> {
         check(
             source,
             radius.span(),
-            v > 0.0 && v <= 16.0,
-            "filter_radius must be in (0, 16] pixels",
+            (MIN_FILTER_RADIUS..=MAX_FILTER_RADIUS).contains(&v),
+            &format!(
+                "filter_radius must be between {MIN_FILTER_RADIUS} and {MAX_FILTER_RADIUS} pixels"
+            ),
         )?;
         match &mut f {
             Filter::Box { radius }
@@ -539,6 +562,8 @@ fn filter(r: &RenderDesc, source: &Source) -> Result<Filter, LoadError> {
             | Filter::Gaussian { radius, .. }
             | Filter::Mitchell { radius, .. } => *radius = v,
         }
+        // The renderer's own check, so that what it would refuse is refused here, in place.
+        f.validate().map_err(|e| source.error(radius.span(), e))?;
     }
     Ok(f)
 }

@@ -43,7 +43,10 @@ pub fn motion(source: &Source, m: &Spanned<MotionDesc>) -> Result<Motion, LoadEr
         let o = o.get_ref();
         Orbit {
             center: o.center.map_or(Vec3::ZERO, |c| c.0),
-            axis: o.axis.as_ref().map_or(Vec3::Y, |a| a.get_ref().0),
+            axis: o
+                .axis
+                .as_ref()
+                .map_or(Vec3::Y, |a| super::rescaled(a.get_ref().0)),
             period: f64::from(o.period.get_ref().0),
             phase: degrees(o.phase),
         }

@@ -2,12 +2,13 @@
 //! placed by a transform; emitting objects report their surface for area lights.
 
 use super::lights::EmitterSurface;
-use super::{Context, RADIUS_RANGE, check, refuse_keys, required, shapes, span};
+use super::{Context, RADIUS_RANGE, check, refuse_keys, required, rescaled, shapes, span};
 use crate::desc::{ObjectDesc, ObjectKind};
 use crate::error::LoadError;
 use glam::{Affine3A, Mat3, Vec3};
 use lucent::shape::{Mesh, Plane, Sphere, SphereMap, triangle};
 use std::collections::HashMap;
+use std::ops::Range;
 use std::path::PathBuf;
 use toml::Spanned;
 
@@ -24,13 +25,15 @@ pub struct MeshKey {
 /// Meshes already stored: their id in the scene builder.
 pub type MeshCache = HashMap<MeshKey, u32>;
 
-/// Adds the object; returns its surface when `emissive`.
+/// Adds the object; returns its surface when `emissive` (its material emits a colour: an area
+/// light). `glows`: its material emits at all, a colour or a texture (so it cannot move).
 pub fn add_object(
     ctx: &mut Context,
     meshes: &mut MeshCache,
     o: &Spanned<ObjectDesc>,
     material: u32,
     emissive: bool,
+    glows: bool,
 ) -> Result<Option<EmitterSurface>, LoadError> {
     let d = o.get_ref();
     let kind = d.kind.name();
@@ -79,7 +82,7 @@ pub fn add_object(
     refuse_keys(ctx.source, kind, &others)?;
     let table = o.span();
     let source = ctx.source;
-    let motion = moving(ctx, d, emissive)?;
+    let motion = moving(ctx, d, glows)?;
     match d.kind {
         ObjectKind::Sphere => {
             let center = required(source, table.clone(), kind, "center", &d.center)?
@@ -104,7 +107,7 @@ pub fn add_object(
             let map = match &d.uv_axes {
                 None => SphereMap::default(),
                 Some(a) => {
-                    let [x, y, z] = a.get_ref().map(|v| v.0.normalize_or_zero());
+                    let [x, y, z] = a.get_ref().map(|v| rescaled(v.0).normalize_or_zero());
                     let orthonormal = [x, y, z].iter().all(|v| (v.length() - 1.0).abs() < 1e-4)
                         && x.dot(y).abs() < 1e-4
                         && y.dot(z).abs() < 1e-4
@@ -148,7 +151,7 @@ pub fn add_object(
                     "an infinite plane cannot emit light: give its material no `emission`",
                 ));
             }
-            ctx.builder.plane(Plane::new(point, n), material);
+            ctx.builder.plane(Plane::new(point, rescaled(n)), material);
             Ok(None)
         }
         ObjectKind::Triangle => {
@@ -163,6 +166,9 @@ pub fn add_object(
             )?;
             let mesh = Mesh::new(v.to_vec(), vec![[0, 1, 2]]);
             let surface = emissive.then(|| surface(&mesh, Affine3A::IDENTITY));
+            if let Some(m) = &motion {
+                moved_at_start(ctx, d, m, Affine3A::IDENTITY)?;
+            }
             let id = ctx.builder.mesh(mesh, material);
             if let Some(m) = motion {
                 ctx.builder.motion(id, m);
@@ -170,7 +176,7 @@ pub fn add_object(
             Ok(surface)
         }
         ObjectKind::Mesh | ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
-            let transform = placement(ctx, d)?;
+            let transform = placement(ctx, d, o.span())?;
             let flipped = d.flip_normals.unwrap_or(false);
             // Read from the path as the scene names it (errors show it so); cached by its
             // canonical form, so two names of one file share the mesh.
@@ -232,6 +238,9 @@ pub fn add_object(
                     id
                 }
             };
+            if let Some(m) = &motion {
+                moved_at_start(ctx, d, m, transform)?;
+            }
             let object = ctx.builder.instance(id, transform, material);
             if let Some(m) = motion {
                 ctx.builder.motion(object, m);
@@ -247,13 +256,13 @@ pub fn add_object(
 fn moving(
     ctx: &Context,
     d: &ObjectDesc,
-    emissive: bool,
+    glows: bool,
 ) -> Result<Option<lucent::motion::Motion>, LoadError> {
     let Some(desc) = &d.motion else {
         return Ok(None);
     };
     let m = super::motion::motion(ctx.source, desc)?;
-    if emissive && !m.is_static() {
+    if glows && !m.is_static() {
         return Err(ctx.source.error(
             desc.span(),
             "an object that emits light cannot move: the light tables are built once for every instant (give it no `motion`, or a material without `emission`)",
@@ -268,8 +277,9 @@ fn moving(
     Ok(Some(m))
 }
 
-/// The object's placement: `transform`, or scale, then rotate about x, y, z, then translate.
-fn placement(ctx: &Context, d: &ObjectDesc) -> Result<Affine3A, LoadError> {
+/// The object's placement: `transform`, or scale, then rotate about x, y, z, then translate;
+/// `table` is the object's, for errors.
+fn placement(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<Affine3A, LoadError> {
     if let Some(t) = &d.transform {
         if d.translate.is_some() || d.rotate.is_some() || d.scale.is_some() {
             return Err(ctx.source.error(
@@ -277,7 +287,12 @@ fn placement(ctx: &Context, d: &ObjectDesc) -> Result<Affine3A, LoadError> {
                 "give `transform` or `scale`/`rotate`/`translate`, not both",
             ));
         }
-        return Ok(Affine3A::from_mat4(t.get_ref().0));
+        return invertible(
+            ctx,
+            Affine3A::from_mat4(t.get_ref().0),
+            t.span(),
+            "the transform",
+        );
     }
     let scale = d.scale.as_ref().map_or(Vec3::ONE, |s| s.get_ref().0);
     let deg = d.rotate.as_ref().map_or(Vec3::ZERO, |r| r.get_ref().0);
@@ -285,9 +300,57 @@ fn placement(ctx: &Context, d: &ObjectDesc) -> Result<Affine3A, LoadError> {
         * Mat3::from_rotation_y(deg.y.to_radians())
         * Mat3::from_rotation_x(deg.x.to_radians());
     let translate = d.translate.as_ref().map_or(Vec3::ZERO, |t| t.get_ref().0);
-    Ok(Affine3A::from_translation(translate)
+    let placed = Affine3A::from_translation(translate)
         * Affine3A::from_mat3(rotation)
-        * Affine3A::from_scale(scale))
+        * Affine3A::from_scale(scale);
+    // Rotations and translations always invert: only the scale can make it singular.
+    let at = d.scale.as_ref().map_or(table, Spanned::span);
+    invertible(ctx, placed, at, "the placement")
+}
+
+/// Refuses a motion that puts the object's placement `placed` out of single precision at time 0
+/// (where the scene is built, and a batch render shows it by default), at the `motion` table.
+fn moved_at_start(
+    ctx: &Context,
+    d: &ObjectDesc,
+    m: &lucent::motion::Motion,
+    placed: Affine3A,
+) -> Result<(), LoadError> {
+    let span = d.motion.as_ref().map_or(0..0, Spanned::span);
+    let at_start = m.at(0.0) * placed;
+    invertible(
+        ctx,
+        at_start,
+        span,
+        "moved to its place at time 0, the placement",
+    )
+    .map(|_| ())
+}
+
+/// `placed`, or an error at `span` when the renderer could not invert it in single precision:
+/// a determinant that is zero or infinite (a scale of 1e-20 on every axis has 1e-60, which is
+/// 0 in `f32`), or an inverse that is not finite (at 1e-13 on every axis the determinant is
+/// 1e-39, and its reciprocal overflows).
+fn invertible(
+    ctx: &Context,
+    placed: Affine3A,
+    span: Range<usize>,
+    what: &str,
+) -> Result<Affine3A, LoadError> {
+    let det = placed.matrix3.determinant();
+    let inverse = Mat3::from(placed.matrix3).inverse();
+    if det.is_finite() && det != 0.0 && inverse.is_finite() && placed.translation.is_finite() {
+        return Ok(placed);
+    }
+    let why = if placed.translation.is_finite() {
+        format!("a scale too small or too large: the determinant is {det:e}")
+    } else {
+        "the translation overflows".to_string()
+    };
+    Err(ctx.source.error(
+        span,
+        format!("{what} is singular or overflows in single precision ({why})"),
+    ))
 }
 
 /// World-space area and area-weighted centre of `mesh` placed by `transform`.

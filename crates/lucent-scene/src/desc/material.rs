@@ -44,7 +44,8 @@ pub enum MaterialKind {
     /// glTF 2.0's metallic-roughness material: `base_color`, `metallic`, `roughness`, `ior`,
     /// `specular`, `specular_color`, `transmission`, `volume`, `clearcoat`,
     /// `clearcoat_roughness`, `clearcoat_normal_map`, `clearcoat_normal_scale`, `sheen_color`,
-    /// `sheen_roughness`, `anisotropy`, `anisotropy_rotation`.
+    /// `sheen_roughness`, `anisotropy`, `anisotropy_rotation`, `iridescence`,
+    /// `iridescence_ior`, `iridescence_thickness`.
     Pbr,
 }
 
@@ -239,6 +240,15 @@ pub struct MaterialDesc {
     /// glTF's anisotropy direction, degrees from the tangent towards the bitangent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub anisotropy_rotation: Option<Spanned<Finite>>,
+    /// glTF's thin-film weight (`KHR_materials_iridescence`), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub iridescence: Option<Spanned<TextureDesc>>,
+    /// The thin film's index of refraction (default 1.3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub iridescence_ior: Option<Spanned<Finite>>,
+    /// The thin film's thickness in nanometres, in `[0, 65535]` (default 400).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub iridescence_thickness: Option<Spanned<TextureDesc>>,
     /// Whether the back side scatters light like the front (default true; Mitsuba's BSDFs
     /// are one-sided unless wrapped in `twosided`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -305,6 +315,9 @@ impl MaterialDesc {
             sheen_roughness: None,
             anisotropy: None,
             anisotropy_rotation: None,
+            iridescence: None,
+            iridescence_ior: None,
+            iridescence_thickness: None,
             two_sided: None,
             back: None,
             vertex_colors: None,
@@ -363,6 +376,8 @@ impl MaterialDesc {
             &mut self.clearcoat_normal_map,
             &mut self.sheen_roughness,
             &mut self.anisotropy,
+            &mut self.iridescence,
+            &mut self.iridescence_thickness,
         ];
         plain
             .into_iter()

@@ -191,7 +191,7 @@ impl<'de> Deserialize<'de> for Matrix {
         let m = glam::Mat4::from_cols_array(&rows).transpose();
         if m.determinant() == 0.0 || !m.determinant().is_finite() {
             return Err(de::Error::custom(
-                "the transform is singular: it flattens the object",
+                "the transform is singular (it flattens the object), or so large that its determinant overflows",
             ));
         }
         Ok(Matrix(m))

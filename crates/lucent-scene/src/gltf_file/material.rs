@@ -11,13 +11,14 @@
 //! | `doubleSided` | `two_sided` |
 //! | `KHR_materials_ior`, `_specular`, `_transmission`, `_volume` (a thickness: refracting) | `ior`, `specular`, `specular_color`, `transmission`, `volume` |
 //! | `KHR_materials_clearcoat`, `_sheen`, `_anisotropy` (strength, rotation) | `clearcoat`, `clearcoat_roughness`, `clearcoat_normal_map`; `sheen_color`, `sheen_roughness`; `anisotropy`, `anisotropy_rotation` |
+//! | `KHR_materials_iridescence`: `iridescenceFactor` × red of `iridescenceTexture`, `iridescenceIor`, thickness `mix(iridescenceThicknessMinimum, iridescenceThicknessMaximum, green of iridescenceThicknessTexture)` (the maximum without the texture) | `iridescence`, `iridescence_ior`, `iridescence_thickness` (a `mix` of the two numbers by the texture) |
 //! | a sampler's `wrapS`/`wrapT`, `magFilter` `NEAREST`; `KHR_texture_transform` | an image's `wrap`, `filter`; its `scale`, `rotation`, `offset` |
 //!
 //! Not read (each a note naming the material): images inside the glTF or GLB file, texture
 //! coordinates other than `TEXCOORD_0`, `KHR_materials_volume`'s attenuation,
-//! `KHR_materials_anisotropy`'s direction texture, `KHR_materials_iridescence`, unlit and
-//! specular-glossiness materials. `occlusionTexture` is a rasteriser's stand-in for the
-//! shadowing a path tracer computes, and is left out on purpose.
+//! `KHR_materials_anisotropy`'s direction texture, unlit and specular-glossiness materials.
+//! `occlusionTexture` is a rasteriser's stand-in for the shadowing a path tracer computes, and
+//! is left out on purpose.
 
 use super::source::file_name_of_uri;
 use crate::desc::texture::{Encoding, Placement};
@@ -507,8 +508,10 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
             d.anisotropy_rotation = Some(spanned(Finite(rotation.to_degrees())));
         }
     }
+    if let Some(i) = m.extension_value("KHR_materials_iridescence") {
+        iridescence(r, i, d)?;
+    }
     for (ext, what) in [
-        ("KHR_materials_iridescence", "iridescence"),
         ("KHR_materials_unlit", "an unlit material (it is shaded)"),
         (
             "KHR_materials_pbrSpecularGlossiness",
@@ -521,5 +524,65 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
             r.note(format!("{ext}: {what} is not rendered"));
         }
     }
+    Ok(())
+}
+
+/// `KHR_materials_iridescence`: the film's weight, index and thickness (nanometres).
+fn iridescence(r: &mut Reader, i: &Value, d: &mut MaterialDesc) -> Result<(), String> {
+    let weight = r.scaled(
+        Rgb::gray(number(i, "iridescenceFactor", 0.0).clamp(0.0, 1.0)),
+        Slot::of_json(i.get("iridescenceTexture")),
+        "iridescenceTexture",
+        Encoding::Linear,
+        Channel::R,
+    )?;
+    d.iridescence = unless_default(weight, 0.0);
+    if d.iridescence.is_none() {
+        return Ok(());
+    }
+    let ior = number(i, "iridescenceIor", 1.3);
+    if !(1.0..=1e3).contains(&ior) {
+        r.note(format!(
+            "iridescenceIor {ior} is not an index of refraction from 1 to 1000; 1.3 is used"
+        ));
+    } else if ior != 1.3 {
+        d.iridescence_ior = Some(spanned(Finite(ior)));
+    }
+    let mut thickness = |key: &str, default: f32| {
+        let v = number(i, key, default);
+        if (0.0..=f32::from(u16::MAX)).contains(&v) {
+            v
+        } else {
+            let t = if v > 0.0 { f32::from(u16::MAX) } else { 0.0 };
+            r.note(format!(
+                "{key} {v} is not a thickness in [0, 65535] nm; {t} is used"
+            ));
+            t
+        }
+    };
+    let (thinnest, thickest) = (
+        thickness("iridescenceThicknessMinimum", 100.0),
+        thickness("iridescenceThicknessMaximum", 400.0),
+    );
+    // Without a texture the film is the maximum thick (as it is where the texture cannot be
+    // read, with a note).
+    let map = match Slot::of_json(i.get("iridescenceThicknessTexture")) {
+        Some(slot) if thinnest != thickest => r.image(
+            &slot,
+            "iridescenceThicknessTexture",
+            Encoding::Linear,
+            Channel::G,
+        )?,
+        _ => None,
+    };
+    let t = match map {
+        Some(m) => TextureDesc::Mix(
+            Box::new(TextureDesc::gray(thinnest)),
+            Box::new(TextureDesc::gray(thickest)),
+            Box::new(m),
+        ),
+        None => TextureDesc::gray(thickest),
+    };
+    d.iridescence_thickness = unless_default(t, 400.0);
     Ok(())
 }

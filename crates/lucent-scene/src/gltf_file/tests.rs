@@ -19,7 +19,11 @@ const MATERIALS: &str = r#"{
   "materials": [
     {"name": "Glass", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.95, 1, 1], "metallicFactor": 0, "roughnessFactor": 0},
      "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.33},
-                    "KHR_materials_volume": {"thicknessFactor": 0.5}}},
+                    "KHR_materials_volume": {"thicknessFactor": 0.5},
+                    "KHR_materials_iridescence": {"iridescenceFactor": 0.5, "iridescenceIor": 0.9,
+                                                  "iridescenceThicknessMaximum": 550,
+                                                  "iridescenceThicknessMinimum": 550,
+                                                  "iridescenceThicknessTexture": {"index": 1}}}},
     {"name": "Textured", "pbrMetallicRoughness": {
         "baseColorFactor": [0.5, 1, 1, 1], "baseColorTexture": {"index": 0,
             "extensions": {"KHR_texture_transform": {"scale": [2, 3], "offset": [0.5, 0], "rotation": 0.5}}},
@@ -34,7 +38,9 @@ const MATERIALS: &str = r#"{
                                     "clearcoatNormalTexture": {"index": 2, "scale": 2}},
         "KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.25, 1], "sheenRoughnessFactor": 0.4},
         "KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1, 0.5, 0.5]},
-        "KHR_materials_iridescence": {"iridescenceFactor": 1}}},
+        "KHR_materials_iridescence": {"iridescenceFactor": 0.8, "iridescenceTexture": {"index": 1},
+                                      "iridescenceIor": 1.8, "iridescenceThicknessMinimum": 200,
+                                      "iridescenceThicknessTexture": {"index": 1}}}},
     {"name": "Cutout", "alphaMode": "MASK", "alphaCutoff": 0.25,
      "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.2]}},
     {"name": "Veil", "alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.4],
@@ -93,7 +99,17 @@ fn materials_become_gltf_pbr_with_every_texture_and_layer() {
         Some(TextureDesc::Solid(Rgb::new(0.9, 0.95, 1.0)))
     );
     assert_eq!(glass.two_sided, Some(false));
-    assert!(notes.is_empty(), "{notes:?}");
+    // A film of one thickness (the texture mixes equal ends, so it is not read), and an
+    // index glTF does not allow, replaced.
+    assert_eq!(number(&glass.iridescence), Some(0.5));
+    assert_eq!(number(&glass.iridescence_thickness), Some(550.0));
+    assert_eq!(glass.iridescence_ior, None);
+    assert_eq!(
+        notes,
+        &[
+            "material 0 (`Glass`): iridescenceIor 0.9 is not an index of refraction from 1 to 1000; 1.3 is used"
+        ]
+    );
 
     // Factors times textures; each texture read in its encoding and channel.
     let (t, notes) = &m[1];
@@ -154,10 +170,34 @@ fn materials_become_gltf_pbr_with_every_texture_and_layer() {
         layers.specular_color,
         Some(TextureDesc::Solid(Rgb::new(1.0, 0.5, 0.5)))
     );
+    // iridescenceFactor times red; thickness from the minimum to the (default) maximum by
+    // green.
+    let film = layers.iridescence.as_ref().unwrap().get_ref();
+    assert!(matches!(film, TextureDesc::Product(f, _) if **f == TextureDesc::gray(0.8)));
+    let weight = image(film);
     assert_eq!(
-        notes,
-        &["material 2 (`Layers`): KHR_materials_iridescence: iridescence is not rendered"]
+        (weight.file.as_str(), weight.channel, weight.encoding),
+        ("orm.png", Some(Channel::R), Some(Encoding::Linear))
     );
+    assert_eq!(
+        layers.iridescence_ior.as_ref().map(|v| v.get_ref().0),
+        Some(1.8)
+    );
+    match layers.iridescence_thickness.as_ref().map(|t| t.get_ref()) {
+        Some(TextureDesc::Mix(thinnest, thickest, amount)) => {
+            assert_eq!(
+                (&**thinnest, &**thickest),
+                (&TextureDesc::gray(200.0), &TextureDesc::gray(400.0))
+            );
+            let map = image(amount);
+            assert_eq!(
+                (map.file.as_str(), map.channel, map.encoding),
+                ("orm.png", Some(Channel::G), Some(Encoding::Linear))
+            );
+        }
+        other => panic!("a mix of the thicknesses, got {other:?}"),
+    }
+    assert!(notes.is_empty(), "{notes:?}");
 
     // MASK: the constant alpha 0.2 under the cutoff 0.25 is a hole everywhere.
     assert_eq!(

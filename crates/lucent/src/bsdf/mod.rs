@@ -62,6 +62,7 @@ mod rough_dielectric;
 pub mod rough_plastic;
 pub mod sheen;
 mod thin_dielectric;
+pub mod thin_film;
 
 #[cfg(test)]
 mod chi2;

@@ -73,11 +73,14 @@ fn disney_and_gltf(base: Rgb) -> Vec<(String, Bsdf<'static>)> {
         let mut p = GltfPbr {
             base_color: base,
             metallic: 0.0,
-            microfacet: Microfacet::ggx(0.3),
+            alpha: Vec2::splat(0.3),
             ior: 1.5,
             specular: 1.0,
             specular_color: Rgb::WHITE,
             transmission: 0.0,
+            iridescence: 0.0,
+            film_ior: 1.3,
+            film_thickness: 400,
             volume: false,
         };
         f(&mut p);
@@ -121,7 +124,20 @@ fn disney_and_gltf(base: Rgb) -> Vec<(String, Bsdf<'static>)> {
         }),
         g("brushed", &|p| {
             p.metallic = 0.5;
-            p.microfacet = Microfacet::new(Distribution::Ggx, 0.4, 0.05);
+            p.alpha = Vec2::new(0.4, 0.05);
+        }),
+        // A thin film on both parts: the lobe weights follow its coloured Fresnel.
+        g("iridescent", &|p| {
+            p.metallic = 0.3;
+            p.iridescence = 1.0;
+            p.film_ior = 1.8;
+            p.film_thickness = 350;
+        }),
+        g("iridescent glass", &|p| {
+            p.transmission = 1.0;
+            p.volume = true;
+            p.iridescence = 0.7;
+            p.film_thickness = 250;
         }),
         (
             "Sheen".to_string(),
@@ -697,11 +713,13 @@ fn white_variants() -> Vec<(String, Bsdf<'static>, Rgb)> {
     // principled returns up to 1.19 times what it receives at 85°, as Mitsuba's does (see
     // bsdf/principled.rs); bounded at 1.2. glTF's appendix B mixes diffuse and specular by the
     // Fresnel of the half vector, which gains at grazing angles: up to 1.12 for a white
-    // dielectric of roughness 0.25 at 89.5°; bounded at 1.15. Metals, glass and sheen conserve.
+    // dielectric of roughness 0.25 at 89.5°; bounded at 1.15 (the iridescent one, whose
+    // dielectric part mixes the same way, returns 1.013 at 89.5°). Metals, glass and sheen
+    // conserve, with a thin film too.
     for (name, b) in disney_and_gltf(one) {
         let bound = if name.starts_with("Principled") {
             Rgb::gray(1.2)
-        } else if name == "glTF plastic" || name == "glTF brushed" {
+        } else if ["glTF plastic", "glTF brushed", "glTF iridescent"].contains(&name.as_str()) {
             Rgb::gray(1.15)
         } else {
             one

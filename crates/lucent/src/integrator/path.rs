@@ -28,8 +28,8 @@
 //! Rays that escape see the scene's environment (its background colour or image), which also
 //! lights the scene; the ambient term of the classic model is not used.
 
-use super::{RayStats, unless_untraceable};
 use super::vertex::{Vertex, footprint_of_sample};
+use super::{RayStats, unless_untraceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::sampling::sobol::Sampler;

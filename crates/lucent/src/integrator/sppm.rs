@@ -24,8 +24,8 @@
 //! fixed chunks whose deposits are added in chunk order, and the grid of visible points is
 //! filled in pixel order — so the image does not depend on the number of threads.
 
-use super::{RayStats, UNTRACEABLE};
 use super::vertex::{Vertex, footprint_of_sample};
+use super::{RayStats, UNTRACEABLE};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::film::Film;

@@ -2,8 +2,8 @@
 //! photon mapper) see it: the material resolved at a hit ([`Scattering`]), direct light by
 //! light sampling, and the next direction by BSDF sampling — free functions they share.
 
-use super::{RayStats, traceable};
 use super::path::power_heuristic;
+use super::{RayStats, traceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::material::{Geometry, Scattering, ScatteringSample};

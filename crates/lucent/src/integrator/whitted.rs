@@ -25,8 +25,8 @@
 //!   only up to `max_depth` bounces (camera rays are depth 0), and at most
 //!   [`MAX_SECONDARY_RAYS`] per camera ray.
 
-use super::{RayStats, traceable, unless_untraceable};
 use super::record::{Cut, NoRecord, RayKind, Recorder};
+use super::{RayStats, traceable, unless_untraceable};
 use crate::Rgb;
 use crate::material::Material;
 use crate::optics::{reflect, refract};

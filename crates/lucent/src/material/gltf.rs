@@ -3,7 +3,7 @@
 //! them), evaluated at a hit into up to three parts of a [`super::Scattering`]:
 //!
 //! - the base, [`GltfPbr`] (metallic-roughness with `specular`, `ior`, `transmission`,
-//!   `anisotropy`);
+//!   `anisotropy`, and the thin film of `iridescence` in its Fresnel terms);
 //! - the sheen ([`Sheen`]) on top of it, the base keeping `1 − max(sheen)·E(μ)`;
 //! - the clearcoat on top of both, a GGX mirror of roughness `clearcoat_roughness²` in the
 //!   coat's own normal, weighted by `clearcoat·F(μ)` (Schlick, f0 0.04), the layers below
@@ -12,8 +12,10 @@
 
 use std::sync::Arc;
 
+use glam::Vec2;
+
 use crate::Rgb;
-use crate::bsdf::{Distribution, GltfPbr, Microfacet, Sheen, SheenAlbedo};
+use crate::bsdf::{GltfPbr, Microfacet, Sheen, SheenAlbedo};
 use crate::texture::{ImageTexture, TexCoords, Texture};
 
 /// glTF's material parameters as textures.
@@ -51,6 +53,14 @@ pub struct GltfMaps {
     pub anisotropy: Texture,
     /// Its direction, radians from the tangent towards the bitangent.
     pub anisotropy_rotation: f32,
+    /// `KHR_materials_iridescence`: the thin film's weight (`iridescenceFactor` times the red
+    /// channel of `iridescenceTexture`; 0: no film).
+    pub iridescence: Texture,
+    /// The film's index of refraction (`iridescenceIor`, default 1.3).
+    pub iridescence_ior: f32,
+    /// The film's thickness in nanometres: `iridescenceThicknessMaximum` (default 400), or its
+    /// mix with the minimum by the green channel of `iridescenceThicknessTexture`.
+    pub iridescence_thickness: Texture,
 }
 
 impl Default for GltfMaps {
@@ -73,6 +83,9 @@ impl Default for GltfMaps {
             sheen_albedo: None,
             anisotropy: Texture::from(0.0),
             anisotropy_rotation: 0.0,
+            iridescence: Texture::from(0.0),
+            iridescence_ior: 1.3,
+            iridescence_thickness: Texture::from(400.0),
         }
     }
 }
@@ -102,6 +115,8 @@ impl GltfMaps {
             &self.sheen_color,
             &self.sheen_roughness,
             &self.anisotropy,
+            &self.iridescence,
+            &self.iridescence_thickness,
         ];
         if let Some((t, _)) = &self.clearcoat_normals {
             v.push(t);
@@ -116,14 +131,25 @@ impl GltfMaps {
         let alpha = roughness * roughness;
         let strength = n(&self.anisotropy);
         let alpha_t = alpha + (1.0 - alpha) * strength * strength;
+        let iridescence = n(&self.iridescence);
+        // Whole nanometres (see `GltfPbr::film_thickness`); not looked up without a film.
+        let film_thickness = if iridescence > 0.0 {
+            let d = self.iridescence_thickness.eval_float(at, images);
+            d.clamp(0.0, f32::from(u16::MAX)).round() as u16
+        } else {
+            0
+        };
         let base = GltfPbr {
             base_color: self.base_color.eval(at, images) * color,
             metallic: n(&self.metallic),
-            microfacet: Microfacet::new(Distribution::Ggx, alpha_t, alpha),
+            alpha: Vec2::new(alpha_t, alpha),
             ior: self.ior,
             specular: n(&self.specular),
             specular_color: self.specular_color.eval(at, images),
             transmission: n(&self.transmission),
+            iridescence,
+            film_ior: self.iridescence_ior,
+            film_thickness,
             volume: self.volume,
         };
         let sheen_color = self.sheen_color.eval(at, images);

@@ -394,6 +394,10 @@ fn bilinear(level: &Level, uv: Vec2, wrap: [Wrap; 2]) -> Texel {
     }
     let x = f64::from(uv.x) * f64::from(level.width) - 0.5;
     let y = f64::from(uv.y) * f64::from(level.height) - 0.5;
+    // Beyond 2⁵² texels a coordinate has no fraction left, and the texel after the last
+    // representable one would overflow: keep far coordinates where wrapping still works.
+    const FAR: f64 = (1u64 << 52) as f64;
+    let (x, y) = (x.clamp(-FAR, FAR), y.clamp(-FAR, FAR));
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
     let (x0, y0) = (x0 as i64, y0 as i64);
