@@ -11,15 +11,9 @@ use lucent::film::splat::FilterSampling;
 use lucent::integrator::{Integrator, Whitted};
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent_scene::{LoadOptions, SceneFile, Spanned};
-use std::sync::atomic::AtomicBool;
 
 fn film(scene: &lucent::scene::Scene, settings: &RenderSettings, beam: bool) -> Film {
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
+    let hooks = Hooks::none();
     let settings = RenderSettings {
         beam,
         threads: 2,

@@ -18,7 +18,6 @@
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent_scene::{LoadOptions, SceneFile, Spanned};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
 
 /// Samples per pixel lucent renders each case with: 256, and 1024 for rough glass and the
 /// transmissive principled cases, whose light refracted from the small sun is the noisiest to
@@ -78,12 +77,7 @@ fn render_text(name: &str, text: &str) -> (usize, usize, Vec<[f32; 3]>) {
     file.desc.image.samples = Spanned::new(0..0, spp(name));
     let loaded = file.build().unwrap();
     assert!(loaded.warnings.is_empty(), "{name}: {:#?}", loaded.warnings);
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
+    let hooks = Hooks::none();
     let settings = RenderSettings {
         seed: 17,
         ..loaded.settings

@@ -11,7 +11,6 @@
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent_scene::{LoadOptions, SceneFile, Spanned};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
 
 fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -65,12 +64,7 @@ fn the_cornell_box_converges_to_mitsubas_image() {
     file.desc.image.samples = Spanned::new(0..0, 1024);
     let loaded = file.build().unwrap();
     assert!(loaded.warnings.is_empty(), "{:#?}", loaded.warnings);
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
+    let hooks = Hooks::none();
     let settings = RenderSettings {
         seed: 11,
         ..loaded.settings

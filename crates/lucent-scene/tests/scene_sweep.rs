@@ -34,7 +34,6 @@ use std::fmt::Write;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// Scenes in a plain `cargo test` run.
@@ -98,12 +97,7 @@ fn run(name: &Path, dir: &Path, text: &str) -> Outcome {
         Ok(l) => l,
         Err(e) => return Outcome::Refused(e),
     };
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
+    let hooks = Hooks::none();
     let settings = RenderSettings {
         threads: 1,
         ..loaded.settings

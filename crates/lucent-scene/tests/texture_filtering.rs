@@ -13,7 +13,6 @@
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent_scene::{LoadOptions, SceneFile, Spanned};
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 
 /// A 256×256 checker of 16×16 squares, black and white.
 fn write_checker(dir: &Path) {
@@ -72,12 +71,7 @@ fn render_scene(dir: &Path, text: &str, spp: u32, seed: u64) -> Vec<f32> {
     let mut file = SceneFile::read_with(&path, &LoadOptions::default()).unwrap();
     file.desc.image.samples = Spanned::new(0..0, spp);
     let loaded = file.build().unwrap();
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
+    let hooks = Hooks::none();
     let settings = RenderSettings {
         seed,
         ..loaded.settings

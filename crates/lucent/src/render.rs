@@ -194,6 +194,19 @@ pub struct Hooks<'a> {
     pub checkpoint: Option<Checkpoints<'a>>,
 }
 
+impl Hooks<'static> {
+    /// No stop request, no progress, no checkpoints: a render run to its end in silence
+    /// (tests, and callers that want only the image).
+    pub fn none() -> Self {
+        static NEVER: AtomicBool = AtomicBool::new(false);
+        Hooks {
+            cancel: &NEVER,
+            progress: &|_, _| {},
+            checkpoint: None,
+        }
+    }
+}
+
 /// Called at most every `every` with a copy of the film (every pixel's samples so far, each
 /// finished tile stored).
 pub struct Checkpoints<'a> {

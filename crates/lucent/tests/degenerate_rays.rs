@@ -8,11 +8,11 @@ mod common;
 use glam::Vec3;
 use lucent::Rgb;
 use lucent::camera::Camera;
-use lucent::integrator::{Integrator, PathTracer, Sppm, Whitted};
+use lucent::integrator::{Integrator, PathTracer, RayStats, Sppm, Whitted};
 use lucent::light::{Falloff, Light, PointLight};
 use lucent::material::Material;
 use lucent::render::RenderSettings;
-use lucent::scene::SceneBuilder;
+use lucent::scene::{Scene, SceneBuilder};
 use lucent::shape::{Plane, Sphere};
 
 #[test]
@@ -31,25 +31,14 @@ fn a_degenerate_lens_drops_and_counts_every_sample() {
         m,
     );
     let scene = b.build().unwrap();
-    for integrator in [
+    let integrators = [
         Integrator::Raycast,
         Integrator::Whitted(Whitted::default()),
         Integrator::Path(PathTracer::default()),
         Integrator::Sppm(Sppm::default()),
-    ] {
-        let settings = RenderSettings {
-            integrator,
-            spp: 2,
-            ..RenderSettings::default()
-        };
-        let rendered = common::render_all(&scene, &settings);
-        let rays = rendered.stats.rays;
-        assert!(rays.nonfinite > 0, "{:?}: {rays:?}", settings.integrator);
-        for y in 0..8 {
-            for x in 0..8 {
-                assert!(rendered.film.pixel(x, y).is_finite(), "pixel ({x}, {y})");
-            }
-        }
+    ];
+    for rays in renders_with_finite_pixels(&scene, &integrators) {
+        assert!(rays.nonfinite > 0, "{rays:?}");
     }
 }
 
@@ -76,27 +65,36 @@ fn rays_that_overflow_at_a_far_wall_end_their_paths_and_are_counted() {
         falloff: Falloff::None,
     }));
     let scene = b.build().unwrap();
-    for integrator in [
+    let integrators = [
         Integrator::Whitted(Whitted::default()),
         Integrator::Path(PathTracer::default()),
         Integrator::Sppm(Sppm::default()),
-    ] {
-        let settings = RenderSettings {
-            integrator,
-            spp: 2,
-            ..RenderSettings::default()
-        };
-        let rendered = common::render_all(&scene, &settings);
-        let rays = rendered.stats.rays;
-        assert!(
-            rays.untraceable > 0 && rays.nonfinite > 0,
-            "{:?}: {rays:?}",
-            settings.integrator
-        );
-        for y in 0..4 {
-            for x in 0..4 {
-                assert!(rendered.film.pixel(x, y).is_finite(), "pixel ({x}, {y})");
-            }
-        }
+    ];
+    for rays in renders_with_finite_pixels(&scene, &integrators) {
+        assert!(rays.untraceable > 0 && rays.nonfinite > 0, "{rays:?}");
     }
+}
+
+/// Renders `scene` at 2 spp under each integrator, asserts that every pixel is finite, and
+/// returns each render's ray counts.
+fn renders_with_finite_pixels(scene: &Scene, integrators: &[Integrator]) -> Vec<RayStats> {
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    integrators
+        .iter()
+        .map(|&integrator| {
+            let settings = RenderSettings {
+                integrator,
+                spp: 2,
+                ..RenderSettings::default()
+            };
+            let rendered = common::render_all(scene, &settings);
+            for y in 0..h {
+                for x in 0..w {
+                    let p = rendered.film.pixel(x, y);
+                    assert!(p.is_finite(), "{integrator:?}: pixel ({x}, {y}) is {p:?}");
+                }
+            }
+            rendered.stats.rays
+        })
+        .collect()
 }
