@@ -106,6 +106,13 @@ pub fn read_image(
             "the image holds values that are not finite",
         ));
     }
+    let max = lucent::texture::MAX_VALUE;
+    if texels.iter().any(|t| t.max_channel() > max) {
+        return Err(LoadError::file(
+            path,
+            format!("the image holds values above {max:e}, the largest a texture may take"),
+        ));
+    }
     let image = ImageTexture::new(w, h, texels)
         .ok_or_else(|| LoadError::file(path, "the image is empty"))?;
     if alpha.is_empty() {

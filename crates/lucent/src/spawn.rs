@@ -40,7 +40,7 @@ pub fn offset_origin(p: Vec3, n: Vec3, error: Vec3) -> Vec3 {
         }
         let ulps = (INT_SCALE * n) as i32;
         // Adding to the bit pattern of a negative float moves it towards −∞, so flip the sign.
-        let step = if p < 0.0 { -ulps } else { ulps };
+        let step = if p < 0.0 { ulps.wrapping_neg() } else { ulps };
         f32::from_bits((p.to_bits() as i32).wrapping_add(step) as u32)
     };
     Vec3::new(

@@ -9,6 +9,7 @@ use crate::desc::{Color, Finite, MaterialDesc, MaterialKind, TextureDesc};
 use crate::error::LoadError;
 use lucent::Rgb;
 use lucent::bsdf::Principled;
+use lucent::bsdf::fresnel::MAX_CONDUCTOR_INDEX;
 use lucent::bsdf::{Distribution, Microfacet, RoughCoat};
 use lucent::material::{
     Approximation, GltfMaps, Material, PrincipledMaps, PrincipledThinMaps, Roughness, Surface,
@@ -792,13 +793,8 @@ fn conductor_index(
     }
 }
 
-/// The largest `eta` and `k` of a conductor, per channel: far above every measured metal, and
-/// far below where the exact Fresnel term overflows in single precision (`(η² − k²)²` passes
-/// `f32::MAX` near 4·10⁹, and the reflectance comes out NaN).
-const MAX_CONDUCTOR_INDEX: f32 = 1000.0;
-
 /// Refuses a constant `eta` or `k` (`what`, `meaning`) with a channel above
-/// [`MAX_CONDUCTOR_INDEX`]; a texture's values are not checked here.
+/// [`MAX_CONDUCTOR_INDEX`]; a texture's values are clamped to it where they are used.
 fn conductor_bound(
     ctx: &Context,
     table: &Range<usize>,

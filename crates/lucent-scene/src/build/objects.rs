@@ -327,23 +327,23 @@ fn moved_at_start(
     .map(|_| ())
 }
 
-/// `placed`, or an error at `span` when the renderer could not invert it in single precision:
-/// a determinant that is zero or infinite (a scale of 1e-20 on every axis has 1e-60, which is
-/// 0 in `f32`), or an inverse that is not finite (at 1e-13 on every axis the determinant is
-/// 1e-39, and its reciprocal overflows).
+/// `placed`, or an error at `span` when the renderer could not use it in single precision
+/// ([`lucent::shape::Transform::new`] decides): a determinant that is zero or infinite (a scale
+/// of 1e-20 on every axis has 1e-60, which is 0 in `f32`), an inverse that is not finite (at
+/// 1e-13 on every axis the determinant is 1e-39, and its reciprocal overflows), or scales so
+/// unequal (1e-18 against 1e18) that normals would underflow.
 fn invertible(
     ctx: &Context,
     placed: Affine3A,
     span: Range<usize>,
     what: &str,
 ) -> Result<Affine3A, LoadError> {
-    let det = placed.matrix3.determinant();
-    let inverse = Mat3::from(placed.matrix3).inverse();
-    if det.is_finite() && det != 0.0 && inverse.is_finite() && placed.translation.is_finite() {
+    if lucent::shape::Transform::new(placed).is_some() {
         return Ok(placed);
     }
+    let det = placed.matrix3.determinant();
     let why = if placed.translation.is_finite() {
-        format!("a scale too small or too large: the determinant is {det:e}")
+        format!("a scale too small, too large or too unequal: the determinant is {det:e}")
     } else {
         "the translation overflows".to_string()
     };

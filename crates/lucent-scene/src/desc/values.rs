@@ -170,6 +170,12 @@ impl<'de> Deserialize<'de> for Color {
         if rgb.r < 0.0 || rgb.g < 0.0 || rgb.b < 0.0 {
             return Err(de::Error::custom("colours must not be negative"));
         }
+        if rgb.max_channel() > lucent::texture::MAX_VALUE {
+            return Err(de::Error::custom(format!(
+                "colour components must be at most {:e}",
+                lucent::texture::MAX_VALUE
+            )));
+        }
         Ok(Color(rgb))
     }
 }

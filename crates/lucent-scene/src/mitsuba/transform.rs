@@ -205,6 +205,11 @@ pub fn placement(m: &DMat4, loc: &Loc) -> Result<Matrix, LoadError> {
     if det == 0.0 {
         return Err(loc.error("the transform is singular: it flattens the shape"));
     }
+    if lucent::shape::Transform::new(glam::Affine3A::from_mat4(single)).is_none() {
+        return Err(loc.error(format!(
+            "the transform's scales are too small, too large or too unequal for single precision (its determinant is {det:e})"
+        )));
+    }
     Ok(Matrix(single))
 }
 

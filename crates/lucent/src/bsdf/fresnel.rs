@@ -98,6 +98,12 @@ pub fn refract(w: Vec3, m: Vec3, f: &DielectricFresnel) -> Vec3 {
     m * (w.dot(m) * f.eta_ti + f.cos_t) - w * f.eta_ti
 }
 
+/// The largest `eta` and `k` of a conductor: far above every measured metal, and far below
+/// where the exact Fresnel term overflows in single precision (`(η² − k²)²` passes `f32::MAX`
+/// near 4·10⁹, and the reflectance comes out NaN). Scene files are held to it, and textured
+/// values clamped to it.
+pub const MAX_CONDUCTOR_INDEX: f32 = 1000.0;
+
 /// The unpolarised Fresnel reflectance of a conductor of complex relative index `η + i·k`, per
 /// channel, for light arriving from the outside at `cos_i ≥ 0` (negative values are clamped:
 /// light does not come out of a metal).
@@ -116,6 +122,11 @@ pub fn conductor(cos_i: f32, eta: Rgb, k: Rgb) -> Rgb {
 /// `R_p = R_s·(c²(a² + b²) + s⁴ − 2ac·s²)/(c²(a² + b²) + s⁴ + 2ac·s²)`,
 /// `F = (R_s + R_p)/2`.
 fn conductor_channel(cos_i: f32, eta: f32, k: f32) -> f32 {
+    // Textured indices can leave the range a scene file's constants are held to.
+    let (eta, k) = (
+        eta.clamp(0.0, MAX_CONDUCTOR_INDEX),
+        k.clamp(0.0, MAX_CONDUCTOR_INDEX),
+    );
     let c = cos_i.clamp(0.0, 1.0);
     let c2 = c * c;
     let s2 = 1.0 - c2;

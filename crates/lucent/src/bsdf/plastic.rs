@@ -88,10 +88,15 @@ impl Plastic {
         let inv_eta2 = 1.0 / (self.eta * self.eta);
         let d = self.diffuse;
         if self.nonlinear {
-            let ch = |c: f32| c * inv_eta2 / (1.0 - c * fdr).max(1e-6);
+            // Past an albedo of 1 the series of inner bounces diverges: held at 1.
+            let ch = |c: f32| {
+                let c = c.min(1.0);
+                c * inv_eta2 / (1.0 - c * fdr).max(1e-6)
+            };
             Rgb::new(ch(d.r), ch(d.g), ch(d.b))
         } else {
-            d * (inv_eta2 / (1.0 - fdr).max(1e-6))
+            // A huge albedo under a coat of index near 0.001 would overflow.
+            (d * (inv_eta2 / (1.0 - fdr).max(1e-6))).clamp(0.0, f32::MAX)
         }
     }
 

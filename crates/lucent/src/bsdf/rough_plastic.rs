@@ -205,7 +205,11 @@ impl<'a> RoughPlastic<'a> {
         let r = c.internal_reflectance;
         let d = self.diffuse;
         let base = if self.nonlinear {
-            let ch = |x: f32| x / (1.0 - x * r).max(1e-6);
+            // Past an albedo of 1 the series of inner bounces diverges: held at 1.
+            let ch = |x: f32| {
+                let x = x.min(1.0);
+                x / (1.0 - x * r).max(1e-6)
+            };
             Rgb::new(ch(d.r), ch(d.g), ch(d.b))
         } else {
             d * (1.0 / (1.0 - r).max(1e-6))

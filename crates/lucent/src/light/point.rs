@@ -29,16 +29,20 @@ impl PointLight {
     /// See [`super::Light::illuminate`].
     pub fn illuminate(&self, p: Vec3) -> Option<LightSample> {
         let offset = self.position - p;
-        let distance = offset.length();
-        if distance.is_nan() || distance <= 0.0 {
+        // Brought to a largest component of 1 first: a light 1e20 away is still in a direction
+        // though the square of its distance overflows.
+        let largest = offset.abs().max_element();
+        if !largest.is_finite() || largest <= 0.0 {
             return None;
         }
+        let to_light = (offset / largest).normalize();
+        let distance = largest * (offset / largest).length();
         let att = match self.falloff {
             Falloff::None => 1.0,
             Falloff::Quadratic => 1.0 / (distance * distance),
         };
         Some(LightSample {
-            to_light: offset / distance,
+            to_light,
             distance,
             intensity: self.intensity * att,
         })
@@ -71,5 +75,25 @@ mod tests {
                 .intensity,
             Rgb::gray(8.0)
         );
+    }
+
+    #[test]
+    fn a_light_whose_squared_distance_overflows_still_has_a_direction() {
+        let l = PointLight {
+            position: Vec3::new(0.0, 3e19, -4e19),
+            intensity: Rgb::WHITE,
+            falloff: Falloff::None,
+        };
+        let s = l.illuminate(Vec3::ZERO).unwrap();
+        assert!((s.to_light - Vec3::new(0.0, 0.6, -0.8)).length() < 1e-6);
+        assert!((s.distance / 5e19 - 1.0).abs() < 1e-6);
+        // A distance that itself overflows keeps the direction too.
+        let far = PointLight {
+            position: Vec3::new(-3e38, 3e38, 0.0),
+            ..l
+        };
+        let s = far.illuminate(Vec3::ZERO).unwrap();
+        assert!((s.to_light - Vec3::new(-1.0, 1.0, 0.0).normalize()).length() < 1e-6);
+        assert_eq!(s.distance, f32::INFINITY);
     }
 }

@@ -8,6 +8,11 @@
 use glam::{Affine3A, Mat3, Vec3};
 use lucent_accel::{Aabb, Ray};
 
+/// The largest ratio of a placement's greatest to its least scale (its condition number, as
+/// bounded by Frobenius norms): the normal matrix scaled to a largest entry of 1 then shortens
+/// no unit normal below 1e-30, so `normal_to_world` stays in normal single precision.
+const MAX_CONDITION: f64 = 1e30;
+
 /// An invertible affine map from object space to world space, with what queries need of it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform {
@@ -18,15 +23,38 @@ pub struct Transform {
 }
 
 impl Transform {
-    /// The transform `to_world`, or `None` when it cannot be inverted (or is not finite).
+    /// The transform `to_world`, or `None` when it cannot be inverted in single precision: a
+    /// determinant that is zero or not finite, an inverse that overflows, or a placement so far
+    /// from uniform (its smallest scale below 1e-30 of its largest) that a normal would
+    /// underflow on its way to the world.
     pub fn new(to_world: Affine3A) -> Option<Self> {
         let det = to_world.matrix3.determinant();
         if !(det.is_finite() && det != 0.0 && to_world.translation.is_finite()) {
             return None;
         }
         let to_object = to_world.inverse();
-        let normal_to_world = Mat3::from(to_world.matrix3).inverse().transpose();
-        Some(Self {
+        let inverse_transpose = Mat3::from(to_world.matrix3).inverse().transpose();
+        // A normal is normalised after the map, so a uniform factor on the matrix is free: one
+        // that makes its largest entry 1 keeps a huge or tiny placement's normals in range.
+        let largest = [
+            inverse_transpose.x_axis,
+            inverse_transpose.y_axis,
+            inverse_transpose.z_axis,
+        ]
+        .iter()
+        .map(|c| c.abs().max_element())
+        .fold(0.0, f32::max);
+        let normal_to_world = inverse_transpose * largest.recip();
+        // The ratio of the extreme scales bounds how short a mapped normal gets (the normal
+        // matrix's singular values are the reciprocals of the placement's): the product of the
+        // Frobenius norms of the map and its inverse bounds that ratio from above.
+        let linear = Mat3::from(to_world.matrix3).as_dmat3();
+        let frobenius = |m: glam::DMat3| {
+            (m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared())
+                .sqrt()
+        };
+        let conditioned = frobenius(linear) * frobenius(linear.inverse()) <= MAX_CONDITION;
+        (to_object.is_finite() && normal_to_world.is_finite() && conditioned).then_some(Self {
             to_world,
             to_object,
             normal_to_world,
@@ -73,7 +101,10 @@ impl Transform {
     /// even under a mirroring transform, where the winding's normal would flip.
     #[inline]
     pub fn normal_to_world(&self, n: Vec3) -> Vec3 {
-        (self.normal_to_world * n).normalize()
+        let m = self.normal_to_world * n;
+        // Brought to a largest component of 1 first: a thin placement's normal can be short
+        // enough (about 1e-30) that its squared length would underflow.
+        (m * m.abs().max_element().recip()).normalize()
     }
 
     /// A bound on the world-space error of `point_to_world(p)` when `p` carries the per-axis
@@ -163,5 +194,30 @@ mod tests {
     fn singular_transforms_are_refused() {
         assert!(Transform::new(Affine3A::from_scale(Vec3::new(1.0, 0.0, 1.0))).is_none());
         assert!(Transform::new(Affine3A::from_translation(Vec3::NAN)).is_none());
+        // The determinant 1e-42 is not 0, but its reciprocal overflows.
+        assert!(Transform::new(Affine3A::from_scale(Vec3::splat(1e-14))).is_none());
+        // Invertible, but a normal along z would shrink to 1e-36 of the others.
+        assert!(Transform::new(Affine3A::from_scale(Vec3::new(1e18, 1e18, 1e-18))).is_none());
+    }
+
+    #[test]
+    fn normals_stay_unit_under_huge_and_tiny_placements() {
+        // The last: an x normal divided by 3e22 has a square below the smallest float.
+        for scale in [
+            Vec3::splat(1e12),
+            Vec3::splat(1e-12),
+            Vec3::new(1e20, 1.0, 1e-6),
+            Vec3::new(-3e12, 2e12, 1e12),
+            Vec3::new(3e22, 1.0, 1e-7),
+        ] {
+            let t = Transform::new(Affine3A::from_scale(scale)).expect("invertible");
+            for n in [Vec3::new(0.48, 0.6, 0.64), Vec3::X, Vec3::Y, Vec3::Z] {
+                let world = t.normal_to_world(n);
+                assert!((world.length() - 1.0).abs() < 1e-5, "{scale}, {n}: {world}");
+                // The inverse transpose of a scale divides by it, component by component.
+                let expected = (n.as_dvec3() / scale.as_dvec3()).normalize().as_vec3();
+                assert!((world - expected).length() < 1e-5, "{scale}: {world} vs {expected}");
+            }
+        }
     }
 }

@@ -139,7 +139,8 @@ pub enum Texture {
     VertexColor,
     /// The product of two textures.
     Product(Box<Texture>, Box<Texture>),
-    /// `a·(1 − t) + b·t`, `t` a number-valued texture.
+    /// `a·(1 − t) + b·t`, `t` a number-valued texture clamped to [0, 1] (beyond it the blend
+    /// would extrapolate, to negative values of the parameters it feeds).
     Mix {
         /// Where `t` is 0.
         a: Box<Texture>,
@@ -155,6 +156,17 @@ pub enum Texture {
         /// The threshold.
         cutoff: f32,
     },
+}
+
+/// The largest magnitude of a texture's value: the largest colour component a scene file
+/// takes and an image may hold. It leaves the BSDFs' arithmetic room (a microfacet
+/// distribution's peak, a coat's `1/η²`) below `f32::MAX`.
+pub const MAX_VALUE: f32 = 1e30;
+
+/// `c` with each channel held within ±[`MAX_VALUE`]: the product of two values within it (or a
+/// blend of them) can leave it.
+fn bounded(c: Rgb) -> Rgb {
+    c.clamp(-MAX_VALUE, MAX_VALUE)
 }
 
 impl Texture {
@@ -176,10 +188,10 @@ impl Texture {
             Texture::UvChecker(c) => c.eval(at.uv),
             Texture::Image(m) => m.eval(at, images),
             Texture::VertexColor => at.color,
-            Texture::Product(a, b) => a.eval(at, images) * b.eval(at, images),
+            Texture::Product(a, b) => bounded(a.eval(at, images) * b.eval(at, images)),
             Texture::Mix { a, b, t } => {
-                let t = t.eval_float(at, images);
-                a.eval(at, images).lerp(b.eval(at, images), t)
+                let t = t.eval_float(at, images).clamp(0.0, 1.0);
+                bounded(a.eval(at, images).lerp(b.eval(at, images), t))
             }
             Texture::Step { value, cutoff } => step(value.eval(at, images), *cutoff),
         }
@@ -205,7 +217,7 @@ impl Texture {
             Texture::UvChecker(c) => (c.even + c.odd) * 0.5,
             Texture::Image(m) => m.mean(images),
             Texture::VertexColor => Rgb::WHITE,
-            Texture::Product(a, b) => a.mean(images) * b.mean(images),
+            Texture::Product(a, b) => bounded(a.mean(images) * b.mean(images)),
             Texture::Mix { a, b, t } => {
                 let t = t.mean(images);
                 let t = if t.r == t.g && t.g == t.b {
@@ -213,7 +225,7 @@ impl Texture {
                 } else {
                     t.luminance()
                 };
-                a.mean(images).lerp(b.mean(images), t)
+                bounded(a.mean(images).lerp(b.mean(images), t.clamp(0.0, 1.0)))
             }
             // The share of texels above the cutoff is not kept; the mean's step stands in.
             Texture::Step { value, cutoff } => step(value.mean(images), *cutoff),
