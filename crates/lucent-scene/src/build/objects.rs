@@ -342,10 +342,13 @@ fn invertible(
         return Ok(placed);
     }
     let det = placed.matrix3.determinant();
-    let why = if placed.translation.is_finite() {
-        format!("a scale too small, too large or too unequal: the determinant is {det:e}")
-    } else {
+    let inverse = Mat3::from(placed.matrix3).inverse();
+    let why = if !placed.translation.is_finite() {
         "the translation overflows".to_string()
+    } else if det.is_finite() && det != 0.0 && inverse.is_finite() {
+        "its scales differ by more than 1e30 to 1, and normals would underflow".to_string()
+    } else {
+        format!("a scale too small or too large: the determinant is {det:e}")
     };
     Err(ctx.source.error(
         span,

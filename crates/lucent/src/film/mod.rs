@@ -122,25 +122,16 @@ impl Film {
         self.samples[i] += n;
     }
 
-    /// Adds `part` (sums, weights and counts) where its top-left pixel falls at `(x0, y0)` of
-    /// this film, which may be outside it: what falls outside is dropped.
-    pub fn add_region(&mut self, part: &Film, x0: i64, y0: i64) {
-        for y in 0..part.height {
-            let fy = y0 + i64::from(y);
-            if fy < 0 || fy >= i64::from(self.height) {
-                continue;
-            }
-            for x in 0..part.width {
-                let fx = x0 + i64::from(x);
-                if fx < 0 || fx >= i64::from(self.width) {
-                    continue;
-                }
-                let (src, dst) = (part.index(x, y), self.index(fx as u32, fy as u32));
-                self.sums[dst] += part.sums[src];
-                self.weights[dst] += part.weights[src];
-                self.samples[dst] += part.samples[src];
-            }
+    /// Adds a radiance sum, a weight sum and a sample count at pixel `(x, y)`, which may be
+    /// outside the film: there it is dropped (a tile's splats reaching past the image).
+    pub fn add_totals(&mut self, (x, y): (i64, i64), sum: Rgb, weight: f32, samples: u32) {
+        if x < 0 || y < 0 || x >= i64::from(self.width) || y >= i64::from(self.height) {
+            return;
         }
+        let i = self.index(x as u32, y as u32);
+        self.sums[i] += sum;
+        self.weights[i] += weight;
+        self.samples[i] += samples;
     }
 
     /// Samples taken at pixel `(x, y)` so far.

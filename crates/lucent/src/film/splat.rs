@@ -15,6 +15,7 @@
 use super::Film;
 use super::filter::Filter;
 use crate::Rgb;
+use glam::Vec4;
 use std::collections::BTreeMap;
 
 /// How a non-box filter weighs samples into pixels.
@@ -27,14 +28,18 @@ pub enum FilterSampling {
     Importance,
 }
 
-/// The film of one tile's splats: the tile grown by `margin` pixels on every side.
+/// The splats of one tile: the tile grown by `margin` pixels on every side.
 #[derive(Clone, Debug)]
 pub struct TileSplats {
-    /// Sums and weights of the splats; samples counted at their own pixels.
-    pub film: Film,
-    /// Image column of the film's left edge (may be negative).
+    /// Per pixel, row by row: the sums of the splatted radiance (r, g, b) and of the weights,
+    /// side by side, so that a splat into a pixel is one four-wide multiply and add.
+    cells: Vec<Vec4>,
+    /// Samples taken, counted at their own pixels.
+    samples: Vec<u32>,
+    width: usize,
+    /// Image column of the left edge (may be negative).
     pub x0: i64,
-    /// Image row of the film's top edge (may be negative).
+    /// Image row of the top edge (may be negative).
     pub y0: i64,
 }
 
@@ -46,18 +51,21 @@ pub fn margin(filter: &Filter) -> u32 {
 }
 
 impl TileSplats {
-    /// An empty splat film for the tile `[x0, x0 + w) × [y0, y0 + h)` and `filter`.
+    /// No splats yet, for the tile `[x0, x0 + w) × [y0, y0 + h)` and `filter`.
     pub fn new(x0: u32, y0: u32, w: u32, h: u32, filter: &Filter) -> Self {
-        let m = margin(filter);
+        let m = margin(filter).min(MAX_MARGIN);
+        let (width, height) = ((w + 2 * m) as usize, (h + 2 * m) as usize);
         Self {
-            film: Film::new(w + 2 * m, h + 2 * m),
+            cells: vec![Vec4::ZERO; width * height],
+            samples: vec![0; width * height],
+            width,
             x0: i64::from(x0) - i64::from(m),
             y0: i64::from(y0) - i64::from(m),
         }
     }
 
     /// Splats a sample of radiance `value` (`None`: not finite, only counted) taken at image
-    /// position `(sx, sy)` inside pixel `(x, y)`.
+    /// position `(sx, sy)` inside pixel `(x, y)` of the tile.
     pub fn add(
         &mut self,
         filter: &Filter,
@@ -65,29 +73,43 @@ impl TileSplats {
         (sx, sy): (f32, f32),
         value: Option<Rgb>,
     ) {
-        let m = margin(filter) as i64;
-        let (px, py) = (i64::from(x) - self.x0, i64::from(y) - self.y0);
-        self.film.count_sample(px as u32, py as u32);
+        let m = margin(filter).min(MAX_MARGIN) as usize;
+        // The pixel's place in the grown tile, and the top-left corner of its splat.
+        let (px, py) = (
+            (i64::from(x) - self.x0) as usize,
+            (i64::from(y) - self.y0) as usize,
+        );
+        self.samples[py * self.width + px] += 1;
         let Some(value) = value else { return };
         // The filter is separable: f(x, y) = f₁(x)·f₁(y).
         let mut wx = [0.0f32; 2 * MAX_MARGIN as usize + 1];
         let mut wy = [0.0f32; 2 * MAX_MARGIN as usize + 1];
-        let m = m.min(i64::from(MAX_MARGIN));
-        let n = (2 * m + 1) as usize;
-        filter.profiles_from(sx - (x as f32 - m as f32 + 0.5), &mut wx[..n]);
-        filter.profiles_from(sy - (y as f32 - m as f32 + 0.5), &mut wy[..n]);
-        for j in -m..=m {
-            let fy = wy[(j + m) as usize];
+        let n = 2 * m + 1;
+        let m_f = m as f32;
+        filter.profiles_from(sx - (x as f32 - m_f + 0.5), &mut wx[..n]);
+        filter.profiles_from(sy - (y as f32 - m_f + 0.5), &mut wy[..n]);
+        let v = Vec4::new(value.r, value.g, value.b, 1.0);
+        for (j, &fy) in wy[..n].iter().enumerate() {
             if fy == 0.0 {
                 continue;
             }
-            for i in -m..=m {
-                let w = wx[(i + m) as usize] * fy;
-                if w != 0.0 {
-                    self.film
-                        .add_splat((px + i) as u32, (py + j) as u32, value, w);
-                }
+            let row = (py - m + j) * self.width + (px - m);
+            for (cell, &fx) in self.cells[row..row + n].iter_mut().zip(&wx[..n]) {
+                // A zero weight adds zeros: no branch.
+                *cell += v * (fx * fy);
             }
+        }
+    }
+
+    /// Adds the splats and the counts to `image`, where the tile's pixels fall on it.
+    fn add_to(&self, image: &mut Film) {
+        for (k, (cell, &samples)) in self.cells.iter().zip(&self.samples).enumerate() {
+            let at = (
+                self.x0 + (k % self.width) as i64,
+                self.y0 + (k / self.width) as i64,
+            );
+            let sum = Rgb::new(cell.x, cell.y, cell.z);
+            image.add_totals(at, sum, cell.w, samples);
         }
     }
 }
@@ -107,7 +129,7 @@ impl Commits {
     pub fn commit(&mut self, index: usize, splats: TileSplats, image: &mut Film) {
         self.pending.insert(index, splats);
         while let Some(s) = self.pending.remove(&self.next) {
-            image.add_region(&s.film, s.x0, s.y0);
+            s.add_to(image);
             self.next += 1;
         }
     }

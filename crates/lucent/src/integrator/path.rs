@@ -100,11 +100,12 @@ impl PathTracer {
         // emitter it hits; `None` after the camera or a delta lobe (weight 1).
         let mut last: Option<(Vec3, f32)> = None;
         for depth in 0.. {
-            // Every bounce draws the same dimensions, whichever branches it takes, so that
-            // each dimension means the same decision in every sample of a pixel.
-            let u_light = (sampler.next_1d(), sampler.next_2d());
-            let u_bsdf = (sampler.next_1d(), sampler.next_2d());
-            let u_rr = sampler.next_1d();
+            // Every bounce spends the same dimensions, whichever branches it takes, so that
+            // each dimension means the same decision in every sample of a pixel; the numbers
+            // are drawn only where a branch uses them.
+            let mut u_light = sampler.defer(3);
+            let mut u_bsdf = sampler.defer(3);
+            let mut u_rr = sampler.defer(1);
 
             let hit = match beam {
                 Some(beam) if depth == 0 => scene
@@ -147,9 +148,11 @@ impl PathTracer {
             let mut v = Vertex::unresolved(ray.dir, hit);
             v.resolve(scene, footprint);
             if !v.bsdf.is_delta() {
-                l += beta * v.direct_light(scene, u_light, true, stats);
+                let u = (u_light.next_1d(), u_light.next_2d());
+                l += beta * v.direct_light(scene, u, true, stats);
             }
-            let Some(b) = v.bounce(u_bsdf, Transport::Radiance, stats) else {
+            let u = (u_bsdf.next_1d(), u_bsdf.next_2d());
+            let Some(b) = v.bounce(u, Transport::Radiance, stats) else {
                 break;
             };
             beta *= b.sample.weight;
@@ -159,7 +162,7 @@ impl PathTracer {
 
             if depth + 1 >= self.rr_depth {
                 let q = beta.max_channel().min(0.95);
-                if u_rr >= q || q.is_nan() {
+                if u_rr.next_1d() >= q || q.is_nan() {
                     break;
                 }
                 beta = beta / q;

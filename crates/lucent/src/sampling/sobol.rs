@@ -139,6 +139,8 @@ pub struct Sampler {
     /// A hash of `(seed, pixel)`, computed once: each draw's keys then cost one mix.
     pixel_key: u64,
     index: u32,
+    /// `index` bit-reversed, the start of every draw's index shuffle, computed once.
+    index_reversed: u32,
     dimension: u32,
 }
 
@@ -149,6 +151,7 @@ impl Sampler {
         Self {
             pixel_key: hash(seed, pixel, u32::MAX, u32::MAX) ^ KEY_SALT,
             index,
+            index_reversed: index.reverse_bits(),
             dimension: 0,
         }
     }
@@ -176,7 +179,18 @@ impl Sampler {
     fn shuffled_index(&self) -> u32 {
         // Each bit of the index is flipped by a function of the bits above it, so each aligned
         // block of 2^k indices goes to an aligned block, permuted.
-        owen_scramble(self.index, self.key(0))
+        laine_karras_permute(self.index_reversed, self.key(0)).reverse_bits()
+    }
+
+    /// This sampler as it stands, for the next `dimensions` draws to be taken from later (or
+    /// never); `self` moves past them. The copy's draws are those `self` would have made, so
+    /// a decision that needs its numbers only some of the time pays for them only then, and
+    /// every sample still spends the same dimensions on the same decisions.
+    #[inline]
+    pub fn defer(&mut self, dimensions: u32) -> Sampler {
+        let at = *self;
+        self.dimension = self.dimension.wrapping_add(dimensions);
+        at
     }
 
     /// The next value in [0,1), dimension by dimension.
@@ -245,6 +259,19 @@ mod tests {
                 out
             })
             .collect()
+    }
+
+    #[test]
+    fn deferred_draws_are_the_draws_skipped() {
+        for index in [0, 1, 7, 1000] {
+            let mut direct = Sampler::new(3, 41, index);
+            let expected = (direct.next_1d(), direct.next_2d(), direct.next_1d());
+            let mut s = Sampler::new(3, 41, index);
+            let mut first = s.defer(3);
+            let after = s.next_1d();
+            assert_eq!(after, expected.2);
+            assert_eq!((first.next_1d(), first.next_2d()), (expected.0, expected.1));
+        }
     }
 
     #[test]
