@@ -37,7 +37,7 @@ use std::sync::Mutex;
 use std::time::Instant;
 
 /// Scenes in a plain `cargo test` run.
-const SCENES: u64 = 200;
+const SCENES: u64 = 400;
 /// The first scene's seed (each next scene's is one more).
 const SEED: u64 = 0x5eed_5ce0e;
 const INTEGRATORS: [&str; 3] = ["whitted", "path", "sppm"];

@@ -694,7 +694,7 @@ fn render_tile_splats(
                 }
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
                 // Uniform in the pixel: the filter weighs the sample where it lands.
-                let (u, lens) = pixel_and_lens(settings, pixel, s, &mut sampler);
+                let (u, lens) = pixel_and_lens(scene, settings, pixel, s, &mut sampler);
                 let (sx, sy) = (x as f32 + u.x, y as f32 + u.y);
                 let ray = scene.camera.ray_through_lens(sx, sy, lens);
                 stats.camera += 1;
@@ -743,13 +743,20 @@ fn tile_beam(scene: &Scene, settings: &RenderSettings, tile: &Tile) -> Option<Be
 /// deterministic integrators the stratified jitter of [`pixel_offset`] (exactly as before filters
 /// and lenses existed) with the lens position from the hash.
 fn pixel_and_lens(
+    scene: &Scene,
     settings: &RenderSettings,
     pixel: u64,
     s: u32,
     sampler: &mut Sampler,
 ) -> (glam::Vec2, glam::Vec2) {
     if let Integrator::Path(_) = settings.integrator {
-        return (sampler.next_2d(), sampler.next_2d());
+        let in_pixel = sampler.next_2d();
+        // A pinhole has no use for a lens position: its dimensions are spent, not drawn.
+        let mut lens = sampler.defer(2);
+        if scene.camera.is_pinhole() {
+            return (in_pixel, glam::Vec2::ZERO);
+        }
+        return (in_pixel, lens.next_2d());
     }
     let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
     let lens = glam::Vec2::new(
@@ -772,7 +779,7 @@ fn camera_sample(
     sampler: &mut Sampler,
 ) -> (Ray, f32) {
     let (x, y) = (x as f32, y as f32);
-    let (u, lens) = pixel_and_lens(settings, pixel, s, sampler);
+    let (u, lens) = pixel_and_lens(scene, settings, pixel, s, sampler);
     if settings.filter == Filter::default() {
         return (scene.camera.ray_through_lens(x + u.x, y + u.y, lens), 1.0);
     }

@@ -268,7 +268,10 @@ enum Model<'a> {
 }
 
 impl<'a> Bsdf<'a> {
-    /// The implementing type of this variant, with its parameters.
+    /// The implementing type of this variant, with its parameters. Inlined into each
+    /// dispatch, so that the two matches fuse and only the variant at hand is built (out of
+    /// line, every call built its model on the stack and copied it out).
+    #[inline(always)]
     fn model(&self) -> Model<'a> {
         match *self {
             Bsdf::Lambert { albedo } => Model::Lambert(Lambert { albedo }),

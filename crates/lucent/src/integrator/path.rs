@@ -108,6 +108,9 @@ impl PathTracer {
             let mut u_rr = sampler.defer(1);
 
             let hit = match beam {
+                Some(beam) if depth == 0 && !scene.has_cutouts() => {
+                    scene.intersect_in(beam, &ray, &mut stats.traversal)
+                }
                 Some(beam) if depth == 0 => scene
                     .intersect_in(beam, &ray, &mut stats.traversal)
                     .and_then(|h| scene.opaque_beyond(h, &ray, &mut stats.traversal)),

@@ -96,6 +96,7 @@ impl Geometry {
 /// The shading normal `ns` turned, if need be, so that the viewer direction `wo` is on the same
 /// side of it as of the geometric normal `ng`, at least `MIN_COS` above its horizon (the
 /// policy in the module docs). `ns` itself where it already is, or where `wo` grazes `ng`.
+#[inline]
 pub fn facing(ns: Vec3, ng: Vec3, wo: Vec3) -> Vec3 {
     let side = wo.dot(ng);
     if side == 0.0 || !side.is_finite() {
@@ -105,6 +106,12 @@ pub fn facing(ns: Vec3, ng: Vec3, wo: Vec3) -> Vec3 {
     if wo.dot(ns) * side >= MIN_COS {
         return ns;
     }
+    tilted(ns, ng, wo, side)
+}
+
+/// [`facing`] where `ns` must turn (kept out of line: most shading normals already face `wo`).
+#[inline(never)]
+fn tilted(ns: Vec3, ng: Vec3, wo: Vec3, side: f32) -> Vec3 {
     // ns's part perpendicular to wo, then tilted towards wo by MIN_COS.
     let perp = ns - wo * wo.dot(ns);
     let perp = match perp.try_normalize() {

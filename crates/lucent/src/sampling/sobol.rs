@@ -50,28 +50,37 @@ const fn sobol_1_matrix() -> [u32; 32] {
 }
 
 /// Sobol's second dimension as a 32-bit fraction: the xor of the matrix columns of the set
-/// bits of `index`.
-#[inline]
+/// bits of `index` (the definition, bit by bit; the sampler uses [`sobol_1_reversed`]).
+#[cfg(test)]
 fn sobol_1(index: u32) -> u32 {
-    // The matrix is linear over GF(2): the xor of one table entry per byte of the index,
-    // branch-free (a scrambled index has all 32 bits in play).
-    let t = &SOBOL_1_BYTES;
+    (0..32)
+        .filter(|j| index & (1 << j) != 0)
+        .fold(0, |x, j| x ^ SOBOL_1_MATRIX[j])
+}
+
+/// Sobol's second dimension bit-reversed, `sobol_1(index).reverse_bits()`: what an Owen
+/// scramble starts from.
+#[inline]
+fn sobol_1_reversed(index: u32) -> u32 {
+    // The matrix is linear over GF(2), and so is reversal: the xor of one table entry per byte
+    // of the index, branch-free (a scrambled index has all 32 bits in play).
+    let t = &SOBOL_1_BYTES_REVERSED;
     t[0][(index & 0xff) as usize]
         ^ t[1][((index >> 8) & 0xff) as usize]
         ^ t[2][((index >> 16) & 0xff) as usize]
         ^ t[3][(index >> 24) as usize]
 }
 
-/// [`sobol_1`] of every byte value in each of the four byte positions.
-static SOBOL_1_BYTES: [[u32; 256]; 4] = sobol_1_bytes();
+/// [`sobol_1_reversed`] of every byte value in each of the four byte positions.
+static SOBOL_1_BYTES_REVERSED: [[u32; 256]; 4] = sobol_1_bytes_reversed();
 
-const fn sobol_1_bytes() -> [[u32; 256]; 4] {
+const fn sobol_1_bytes_reversed() -> [[u32; 256]; 4] {
     let mut t = [[0u32; 256]; 4];
     let mut byte = 0;
     while byte < 4 {
         let mut v = 0;
         while v < 256 {
-            let mut x = 0;
+            let mut x = 0u32;
             let mut bit = 0;
             while bit < 8 {
                 if v & (1 << bit) != 0 {
@@ -79,7 +88,7 @@ const fn sobol_1_bytes() -> [[u32; 256]; 4] {
                 }
                 bit += 1;
             }
-            t[byte][v] = x;
+            t[byte][v] = x.reverse_bits();
             v += 1;
         }
         byte += 1;
@@ -111,7 +120,7 @@ fn laine_karras_permute(mut x: u32, key: u64) -> u32 {
 /// Owen's nested uniform scramble of a 32-bit fraction `x` with `key`: each bit is flipped by
 /// a random function of the bits above it (the more significant digits), so the scrambled
 /// points of any elementary interval stay in one elementary interval of the same shape.
-#[inline]
+#[cfg(test)]
 fn owen_scramble(x: u32, key: u64) -> u32 {
     laine_karras_permute(x.reverse_bits(), key).reverse_bits()
 }
@@ -208,7 +217,9 @@ impl Sampler {
     pub fn next_2d(&mut self) -> Vec2 {
         let i = self.shuffled_index();
         let x = laine_karras_permute(i, self.key(1)).reverse_bits();
-        let y = owen_scramble(sobol_1(i), self.key(2));
+        // Owen-scrambling reverses, permutes and reverses back; the first reversal is in the
+        // table (reversal distributes over xor).
+        let y = laine_karras_permute(sobol_1_reversed(i), self.key(2)).reverse_bits();
         self.dimension = self.dimension.wrapping_add(2);
         Vec2::new(fraction_to_float(x), fraction_to_float(y))
     }
@@ -284,6 +295,9 @@ mod tests {
         // Its first points: 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8.
         let first: Vec<u32> = (0..8).map(|i| sobol_1(i) >> 29).collect();
         assert_eq!(first, [0, 4, 6, 2, 5, 1, 3, 7]);
+        for i in [0, 1, 5, 0x8000_0001, 0xdead_beef, u32::MAX] {
+            assert_eq!(sobol_1_reversed(i), sobol_1(i).reverse_bits());
+        }
     }
 
     #[test]

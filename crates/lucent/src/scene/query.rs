@@ -506,19 +506,30 @@ impl Scene {
                     }
                     _ => (here, here_error),
                 };
+                // Without vertex normals the shading normal is the face's: carried once.
+                let normals_to_world = |t: &crate::shape::Transform| {
+                    let normal = t.normal_to_world(local_normal);
+                    let shading = if mesh.normals.is_empty() {
+                        normal
+                    } else {
+                        t.normal_to_world(local_shading)
+                    };
+                    (normal, shading)
+                };
                 let (normal, shading_normal, dpdu, dpdv) = match instance.transform {
-                    Some(t) if needs_tangents => (
-                        t.normal_to_world(local_normal),
-                        t.normal_to_world(local_shading),
-                        t.vector_to_world(tangents.0),
-                        t.vector_to_world(tangents.1),
-                    ),
-                    Some(t) => (
-                        t.normal_to_world(local_normal),
-                        t.normal_to_world(local_shading),
-                        Vec3::ZERO,
-                        Vec3::ZERO,
-                    ),
+                    Some(t) if needs_tangents => {
+                        let (normal, shading) = normals_to_world(&t);
+                        (
+                            normal,
+                            shading,
+                            t.vector_to_world(tangents.0),
+                            t.vector_to_world(tangents.1),
+                        )
+                    }
+                    Some(t) => {
+                        let (normal, shading) = normals_to_world(&t);
+                        (normal, shading, Vec3::ZERO, Vec3::ZERO)
+                    }
                     None if needs_tangents => (local_normal, local_shading, tangents.0, tangents.1),
                     None => (local_normal, local_shading, Vec3::ZERO, Vec3::ZERO),
                 };

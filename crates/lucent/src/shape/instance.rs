@@ -102,6 +102,10 @@ impl Transform {
     #[inline]
     pub fn normal_to_world(&self, n: Vec3) -> Vec3 {
         let m = self.normal_to_world * n;
+        let length2 = m.length_squared();
+        if (1e-30..1e30).contains(&length2) {
+            return m * length2.sqrt().recip();
+        }
         // Brought to a largest component of 1 first: a thin placement's normal can be short
         // enough (about 1e-30) that its squared length would underflow.
         (m * m.abs().max_element().recip()).normalize()
@@ -216,7 +220,10 @@ mod tests {
                 assert!((world.length() - 1.0).abs() < 1e-5, "{scale}, {n}: {world}");
                 // The inverse transpose of a scale divides by it, component by component.
                 let expected = (n.as_dvec3() / scale.as_dvec3()).normalize().as_vec3();
-                assert!((world - expected).length() < 1e-5, "{scale}: {world} vs {expected}");
+                assert!(
+                    (world - expected).length() < 1e-5,
+                    "{scale}: {world} vs {expected}"
+                );
             }
         }
     }
