@@ -1,5 +1,7 @@
-//! The unit shapes of `[[object]]` kinds `rectangle`, `cube` and `disk`, as meshes with normals
-//! and texture coordinates (Mitsuba's shapes, placed by a transform). A rectangle's
+//! The unit shapes of `[[object]]` kinds `rectangle`, `cube` and `disk`, as meshes with texture
+//! coordinates (Mitsuba's shapes, placed by a transform). They are flat, so they carry no vertex
+//! normals: each face's own normal is exact (an axis), and a hit then neither interpolates nor
+//! transforms a second one. A rectangle's
 //! `(u, v) = ((x + 1)/2, (1 − y)/2)`: image rows run downwards, so an image stands upright on
 //! it; an object's `flip_v` gives Mitsuba's `v = (y + 1)/2`. A disk's are planar (Mitsuba's
 //! polar), each cube face a rectangle's.
@@ -25,7 +27,7 @@ pub fn rectangle() -> Mesh {
     Mesh {
         positions,
         triangles: vec![[0, 1, 2], [0, 2, 3]],
-        normals: vec![Vec3::Z; 4],
+        normals: vec![],
         uvs,
         colors: vec![],
         tangents: vec![],
@@ -46,7 +48,6 @@ pub fn cube() -> Mesh {
             let base = mesh.positions.len() as u32;
             for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
                 mesh.positions.push(n + a * u + b * v);
-                mesh.normals.push(n);
                 mesh.uvs.push(Vec2::new(0.5 * (a + 1.0), 0.5 * (1.0 - b)));
             }
             mesh.triangles.push([base, base + 1, base + 2]);
@@ -65,7 +66,6 @@ pub fn disk() -> Mesh {
         mesh.positions.push(Vec3::new(a.cos(), a.sin(), 0.0));
         mesh.triangles.push([0, 1 + i, 1 + (i + 1) % DISK_SEGMENTS]);
     }
-    mesh.normals = vec![Vec3::Z; mesh.positions.len()];
     mesh.uvs = mesh
         .positions
         .iter()
@@ -104,6 +104,12 @@ mod tests {
         assert!((a - polygon).abs() < 1e-4);
         for m in [rectangle(), cube(), disk()] {
             m.validate().unwrap();
+            // Flat: every face's normal is an exact axis (what shading uses without vertex
+            // normals).
+            for t in 0..m.triangles.len() as u32 {
+                let n = triangle::normal(m.vertices(t)).unwrap();
+                assert_eq!(n.abs().max_element(), 1.0, "{n}");
+            }
         }
     }
 }

@@ -67,6 +67,8 @@ pub struct AreaLights {
     pub lights: Vec<AreaLight>,
     /// World-space triangles of the triangle emitters, counter-clockwise from the front.
     pub triangles: Vec<[Vec3; 3]>,
+    /// Their unit front normals (zero for a degenerate one), worked out once.
+    normals: Vec<Vec3>,
 }
 
 impl AreaLights {
@@ -80,6 +82,11 @@ impl AreaLights {
         let area = areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32;
         let first = self.triangles.len() as u32;
         self.triangles.extend_from_slice(triangles);
+        self.normals.extend(
+            triangles
+                .iter()
+                .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero()),
+        );
         self.lights.push(AreaLight {
             object,
             radiance,
@@ -109,7 +116,7 @@ impl AreaLights {
                 let [a, b, c] = self.triangles[*first as usize + k];
                 let (b0, b1) = square_to_uniform_triangle(u);
                 let x = a * b0 + b * b1 + c * (1.0 - b0 - b1);
-                let n = (b - a).cross(c - a).normalize_or_zero();
+                let n = self.normals[*first as usize + k];
                 let offset = x - p;
                 let d2 = offset.length_squared();
                 let distance = d2.sqrt();

@@ -91,6 +91,10 @@ impl Distribution1D {
     /// index, its probability ([`pmf`](Self::pmf)), and `u` rescaled to `[0, 1)` within the
     /// cell, uniform and independent of the choice, for reuse.
     pub fn sample_discrete(&self, u: f32) -> (usize, f32, f32) {
+        if self.weights.len() == 1 {
+            // One cell (a scene's only light): nothing to search, and `u` is already its own.
+            return (0, 1.0, u.clamp(0.0, ONE_MINUS_EPSILON));
+        }
         let i = self.find(u);
         (i, self.pmf(i), self.remap(u, i))
     }
