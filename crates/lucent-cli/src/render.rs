@@ -176,6 +176,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             rays.nonfinite
         );
     }
+    let overflowed = rendered.film.overflowed_pixels();
+    if overflowed > 0 {
+        eprintln!(
+            "warning: {overflowed} pixels summed past single precision (radiance near 3e38 in the inputs) and were clamped to the largest finite value"
+        );
+    }
     let (w, h) = (scene.camera.width(), scene.camera.height());
     let (least, most) = rendered.samples_range;
 

@@ -255,6 +255,51 @@ fn the_sandbox_keeps_files_inside_the_scenes_folder() {
     );
     let e = refused_in(&inner, &["info", "--sandbox", "m.obj"]);
     assert!(e.starts_with("error: m.obj:1:"), "{e}");
+    // Inside in name only: a symbolic link in the folder to the file outside.
+    std::os::unix::fs::symlink(&outside, inner.join("link.obj")).unwrap();
+    write(&inner, "s.toml", scene("link.obj"));
+    let e = refused_in(&inner, &["info", "--sandbox", "s.toml"]);
+    assert!(e.starts_with("error: s.toml:8:8:"), "{e}");
+    assert!(e.contains("through a symbolic link"), "{e}");
+    // A linked folder on the way does the same.
+    std::os::unix::fs::symlink(dir.path(), inner.join("up")).unwrap();
+    write(&inner, "s.toml", scene("up/outside.obj"));
+    let e = refused_in(&inner, &["info", "--sandbox", "s.toml"]);
+    assert!(e.contains("through a symbolic link"), "{e}");
+}
+
+#[test]
+fn special_files_are_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = |file: &str| {
+        format!(
+            "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[[material]]\nname = \"m\"\n[[object]]\ntype = \"mesh\"\nfile = \"{file}\"\nmaterial = \"m\"\n"
+        )
+    };
+    let fifo = dir.path().join("pipe.obj");
+    let mut cases = vec![
+        ("/dev/zero".to_string(), "not a regular file"),
+        ("/proc/self/pagemap".to_string(), "pseudo-file"),
+        (dir.path().display().to_string(), "a folder"),
+    ];
+    // A FIFO would block its reader until a writer came (left out where mkfifo is missing).
+    if std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        cases.push((fifo.display().to_string(), "not a regular file"));
+    }
+    for (file, why) in cases {
+        write(dir.path(), "s.toml", scene(&file));
+        let began = std::time::Instant::now();
+        let e = refused_in(dir.path(), &["info", "s.toml"]);
+        assert!(began.elapsed().as_secs_f32() < 1.0, "{file}: {e}");
+        assert!(
+            e.contains(why) && e.starts_with("error: s.toml:"),
+            "{file}: {e}"
+        );
+    }
 }
 
 /// Converts `scene` into a TOML file in another folder and renders both: the images must be

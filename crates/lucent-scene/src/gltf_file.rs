@@ -452,7 +452,7 @@ impl Asset {
         options: &LoadOptions,
         inputs: &mut Fingerprint,
     ) -> Result<Self, LoadError> {
-        let bytes = std::fs::read(path)
+        let bytes = crate::input::read(path)
             .map_err(|e| LoadError::file(path, format!("cannot read the glTF file: {e}")))?;
         inputs.add(&bytes);
         let glb = bytes.starts_with(b"glTF");
@@ -560,10 +560,7 @@ impl Asset {
 fn read_buffer_file(file: &Path, declared: usize) -> Result<Vec<u8>, String> {
     use std::io::Read;
     let cannot = |e: std::io::Error| format!("cannot read `{}`: {e}", file.display());
-    let f = std::fs::File::open(file).map_err(cannot)?;
-    if !f.metadata().map_err(cannot)?.is_file() {
-        return Err(format!("`{}` is not a regular file", file.display()));
-    }
+    let (f, _) = crate::input::open(file).map_err(cannot)?;
     let mut data = Vec::new();
     f.take(declared as u64)
         .read_to_end(&mut data)

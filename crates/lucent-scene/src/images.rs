@@ -24,7 +24,7 @@ pub fn read_image(
     encoding: Encoding,
     inputs: &mut Fingerprint,
 ) -> Result<ImageTexture, LoadError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::input::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
     inputs.add(&bytes);
     let unreadable =

@@ -124,7 +124,7 @@ pub fn import_obj(
     inputs: &mut Fingerprint,
     files: &mut crate::mesh_file::MeshFiles,
 ) -> Result<Imported, LoadError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::input::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     inputs.add(&bytes);
     let obj = std::sync::Arc::new(crate::obj::parse_obj(&bytes, path)?);
@@ -137,7 +137,7 @@ pub fn import_obj(
     for (name, line) in &obj.libraries {
         let lib_path = crate::paths::resolve(&folder, name, options)
             .map_err(|e| LoadError::line(path, *line, e))?;
-        match std::fs::read(&lib_path) {
+        match crate::input::read(&lib_path) {
             Ok(b) => {
                 inputs.add(&b);
                 let dir = Path::new(name)

@@ -14,6 +14,7 @@ pub mod gltf_file;
 pub mod hash;
 pub mod images;
 pub mod import;
+pub mod input;
 pub mod mesh_file;
 pub mod mitsuba;
 pub mod mtl;
@@ -102,7 +103,7 @@ impl SceneFile {
             }
         };
         let Some(mut imported) = imported else {
-            let bytes = std::fs::read(path)
+            let bytes = crate::input::read(path)
                 .map_err(|e| LoadError::file(path, format!("cannot read the scene file: {e}")))?;
             let text = String::from_utf8(bytes).map_err(|e| {
                 LoadError::file(path, format!("the scene file is not UTF-8 text: {e}"))

@@ -148,7 +148,7 @@ impl MeshFiles {
 }
 
 fn read(path: &Path, fingerprint: &mut Fingerprint) -> Result<Vec<u8>, LoadError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::input::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     fingerprint.add(&bytes);
     Ok(bytes)

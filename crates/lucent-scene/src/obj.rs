@@ -174,7 +174,7 @@ impl ObjFile {
 
 /// Reads the OBJ file at `path` as one mesh (every face).
 pub fn read_obj(path: &Path) -> Result<Mesh, LoadError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::input::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     let file = parse_obj(&bytes, path)?;
     Ok(file.mesh(None).unwrap_or_default())

@@ -12,7 +12,8 @@ pub struct LoadOptions {
 }
 
 /// `name` (as written in a scene file) resolved against `base_dir`; with `options.sandbox`, an
-/// error when it is absolute or climbs out of `base_dir`.
+/// error when it is absolute, climbs out of `base_dir` with `..`, or is a file inside it in name
+/// only (a symbolic link, or a linked folder on the way, that leads out).
 pub fn resolve(base_dir: &Path, name: &str, options: &LoadOptions) -> Result<PathBuf, String> {
     let rel = Path::new(name);
     if options.sandbox {
@@ -35,6 +36,24 @@ pub fn resolve(base_dir: &Path, name: &str, options: &LoadOptions) -> Result<Pat
                 ));
             }
         }
+        // Lexically inside, but a symbolic link on the way can still lead out: where the file
+        // exists, its real path must be inside the folder's real path.
+        let joined = base_dir.join(rel);
+        // A scene in the working folder has an empty one, which does not canonicalise.
+        let folder = if base_dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            base_dir
+        };
+        if let (Ok(real), Ok(folder)) = (joined.canonicalize(), folder.canonicalize())
+            && !real.starts_with(&folder)
+        {
+            return Err(format!(
+                "`{name}` leads out of the scene's folder through a symbolic link (to `{}`), refused by --sandbox",
+                real.display()
+            ));
+        }
+        return Ok(joined);
     }
     Ok(base_dir.join(rel))
 }

@@ -109,7 +109,7 @@ impl Element {
 
 /// Reads the PLY file at `path`.
 pub fn read_ply(path: &Path) -> Result<PlyMesh, LoadError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::input::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     parse_ply(&bytes, path)
 }
@@ -345,6 +345,37 @@ impl Reader<'_> {
         Ok(value)
     }
 
+    /// ASCII: the end of one element's line. PLY writes each element on a line of its own, so
+    /// a value left over is an error (read on, it would shift every later value).
+    fn end_row(&mut self, what: &str) -> Result<(), LoadError> {
+        if self.format != Format::Ascii {
+            return Ok(());
+        }
+        while let Some(&c) = self.bytes.get(self.pos) {
+            match c {
+                b'\n' | b'\r' => return Ok(()),
+                c if c.is_ascii_whitespace() => self.pos += 1,
+                _ => {
+                    let start = self.pos;
+                    while self
+                        .bytes
+                        .get(self.pos)
+                        .is_some_and(|c| !c.is_ascii_whitespace())
+                    {
+                        self.pos += 1;
+                    }
+                    let word = String::from_utf8_lossy(&self.bytes[start..self.pos]);
+                    return Err(LoadError::line(
+                        self.path,
+                        self.line + 1,
+                        format!("`{word}` is one value more than {what} has properties"),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// A list's length, checked against what is left of the file.
     fn list_len(&mut self, count: Scalar, item: Scalar, what: &str) -> Result<usize, LoadError> {
         let n = self.read(count, what)?;
@@ -387,6 +418,7 @@ impl Reader<'_> {
                     }
                 }
             }
+            self.end_row(&what)?;
         }
         Ok(())
     }
@@ -426,6 +458,7 @@ fn read_vertices(r: &mut Reader, e: &Element, mesh: &mut PlyMesh) -> Result<(), 
                 }
             };
         }
+        r.end_row("a vertex")?;
         let p = Vec3::new(values[x] as f32, values[y] as f32, values[z] as f32);
         if !p.is_finite() {
             return Err(LoadError::file(
@@ -501,6 +534,7 @@ fn read_polygons(
                 }
             }
         }
+        r.end_row(if strips { "a strip" } else { "a face" })?;
         if strips {
             push_strips(&indices, &mut mesh.triangles);
         } else {
@@ -538,6 +572,25 @@ mod tests {
     }
 
     const ASCII: &str = "ply\nformat ascii 1.0\ncomment a quad\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 255 255 255\n4 0 1 2 3\n";
+
+    #[test]
+    fn an_ascii_line_with_a_value_too_many_is_refused_at_its_line() {
+        let text = ASCII.replace("1 0 0 0 255 0\n", "1 0 0 0 255 0 7\n");
+        let e = parse(text.as_bytes()).unwrap_err();
+        assert_eq!(e.position.map(|p| p.0), Some(15), "{e}");
+        assert!(
+            e.message
+                .contains("`7` is one value more than a vertex has"),
+            "{e}"
+        );
+        let text = ASCII.replace("4 0 1 2 3\n", "4 0 1 2 3 0\n");
+        let e = parse(text.as_bytes()).unwrap_err();
+        assert!(e.message.contains("more than a face has"), "{e}");
+        // Trailing spaces and Windows line ends are no values.
+        let (header, body) = ASCII.split_at(ASCII.find("end_header\n").unwrap() + 11);
+        let text = format!("{header}{}", body.replace("\n", " \r\n"));
+        assert_eq!(parse(text.as_bytes()).unwrap().triangles.len(), 2);
+    }
 
     #[test]
     fn reads_ascii_with_colours_and_a_quad() {

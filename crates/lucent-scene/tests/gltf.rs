@@ -824,8 +824,23 @@ fn a_buffer_must_be_a_regular_file() {
     assert_refused(
         &path,
         &open(),
-        &format!("buffer 0: `{folder}` is not a regular file"),
+        &format!("buffer 0: cannot read `{folder}`: a folder: refused"),
     );
+    // A FIFO would block the reader until a writer came: refused before it is opened.
+    let fifo = dir.path("pipe.bin");
+    if std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        std::fs::write(&path, a.json(Some("pipe.bin"), &rest)).unwrap();
+        let fifo = fifo.display().to_string();
+        assert_refused(
+            &path,
+            &open(),
+            &format!("buffer 0: cannot read `{fifo}`: not a regular file"),
+        );
+    }
 }
 
 #[test]

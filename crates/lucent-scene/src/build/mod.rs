@@ -117,10 +117,10 @@ impl Context<'_> {
         encoding: Encoding,
     ) -> Result<u32, LoadError> {
         let path = self.path(name, span.clone())?;
-        if !path.is_file() {
+        if let Err(why) = crate::input::refused(&path) {
             return Err(self
                 .source
-                .error(span, format!("image file `{}` not found", path.display())));
+                .error(span, format!("image file `{}` {why}", path.display())));
         }
         let key = (
             std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone()),

@@ -104,6 +104,16 @@ pub fn add_object(
                 in_range,
                 &format!("a sphere's radius must be between {lo:e} and {hi:e}, got {r:e}"),
             )?;
+            // Below this, points of the sphere round onto its centre (and its normals to NaN).
+            let least = center.abs().max_element() * MIN_RADIUS_PER_DISTANCE;
+            check(
+                source,
+                radius.span(),
+                r >= least,
+                &format!(
+                    "a sphere's radius must be at least 2⁻²⁰ of its centre's largest coordinate in single precision: at least {least:e} there, got {r:e}"
+                ),
+            )?;
             let map = match &d.uv_axes {
                 None => SphereMap::default(),
                 Some(a) => {
@@ -184,11 +194,10 @@ pub fn add_object(
             let key = if d.kind == ObjectKind::Mesh {
                 let file = required(source, table, kind, "file", &d.file)?;
                 let path = ctx.path(file.get_ref(), file.span())?;
-                if !path.is_file() {
-                    return Err(source.error(
-                        file.span(),
-                        format!("mesh file `{}` not found", path.display()),
-                    ));
+                if let Err(why) = crate::input::refused(&path) {
+                    return Err(
+                        source.error(file.span(), format!("mesh file `{}` {why}", path.display()))
+                    );
                 }
                 read_from = path.clone();
                 MeshKey {
@@ -276,6 +285,11 @@ fn moving(
     }
     Ok(Some(m))
 }
+
+/// A sphere's least radius per unit of its centre's largest coordinate, 2⁻²⁰: its points are
+/// then at least 8 ulps of that coordinate away from the centre (a sphere at 1e6 needs a radius
+/// of 0.95; one at 1e-2 any radius the range allows).
+const MIN_RADIUS_PER_DISTANCE: f32 = 1.0 / 1_048_576.0;
 
 /// The object's placement: `transform`, or scale, then rotate about x, y, z, then translate;
 /// `table` is the object's, for errors.

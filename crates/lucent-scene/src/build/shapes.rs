@@ -1,7 +1,8 @@
 //! The unit shapes of `[[object]]` kinds `rectangle`, `cube` and `disk`, as meshes with texture
-//! coordinates (Mitsuba's shapes, placed by a transform). They are flat, so they carry no vertex
-//! normals: each face's own normal is exact (an axis), and a hit then neither interpolates nor
-//! transforms a second one. A rectangle's
+//! coordinates (Mitsuba's shapes, placed by a transform). Rectangles and cubes carry no vertex
+//! normals: each face's own normal is exactly an axis, and a hit then neither interpolates nor
+//! transforms a second one. A disk keeps its normals (`+z`): its fan's faces, cut by rounded
+//! sines and cosines, are an ulp off the axis. A rectangle's
 //! `(u, v) = ((x + 1)/2, (1 − y)/2)`: image rows run downwards, so an image stands upright on
 //! it; an object's `flip_v` gives Mitsuba's `v = (y + 1)/2`. A disk's are planar (Mitsuba's
 //! polar), each cube face a rectangle's.
@@ -66,6 +67,7 @@ pub fn disk() -> Mesh {
         mesh.positions.push(Vec3::new(a.cos(), a.sin(), 0.0));
         mesh.triangles.push([0, 1 + i, 1 + (i + 1) % DISK_SEGMENTS]);
     }
+    mesh.normals = vec![Vec3::Z; mesh.positions.len()];
     mesh.uvs = mesh
         .positions
         .iter()
@@ -104,8 +106,10 @@ mod tests {
         assert!((a - polygon).abs() < 1e-4);
         for m in [rectangle(), cube(), disk()] {
             m.validate().unwrap();
-            // Flat: every face's normal is an exact axis (what shading uses without vertex
-            // normals).
+        }
+        // Without vertex normals, shading uses the faces' own: exact axes.
+        for m in [rectangle(), cube()] {
+            assert!(m.normals.is_empty());
             for t in 0..m.triangles.len() as u32 {
                 let n = triangle::normal(m.vertices(t)).unwrap();
                 assert_eq!(n.abs().max_element(), 1.0, "{n}");

@@ -381,7 +381,8 @@ impl Reader<'_, '_> {
         let Ok(path) = resolve(self.images.base_dir, &file, self.images.options) else {
             return false;
         };
-        image::ImageReader::open(path)
+        crate::input::open(&path)
+            .map(|(file, _)| image::ImageReader::new(std::io::BufReader::new(file)))
             .and_then(|r| r.with_guessed_format())
             .ok()
             .and_then(|r| r.into_decoder().ok())

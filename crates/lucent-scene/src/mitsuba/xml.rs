@@ -186,7 +186,7 @@ struct Loader<'a> {
 impl Loader<'_> {
     /// The root element of the file at `path` (included from `from`), read in full.
     fn file(&mut self, path: &Path, from: Option<&Loc>) -> Result<Element, LoadError> {
-        let bytes = std::fs::read(path).map_err(|e| match from {
+        let bytes = crate::input::read(path).map_err(|e| match from {
             Some(at) => at.error(format!(
                 "cannot read the included file `{}`: {e}",
                 path.display()

@@ -150,10 +150,28 @@ impl Film {
         let i = self.index(x, y);
         let w = self.weights[i];
         if w > 0.0 {
-            self.sums[i] / w
+            // The last guard: finite samples near f32::MAX can still sum past it, and an image
+            // never holds NaN or ∞ (see `overflowed_pixels`).
+            (self.sums[i] / w).map(|c| {
+                if c.is_nan() {
+                    0.0
+                } else {
+                    c.clamp(-f32::MAX, f32::MAX)
+                }
+            })
         } else {
             Rgb::BLACK
         }
+    }
+
+    /// Pixels whose sums overflowed single precision (NaN or ∞): [`Film::pixel`] gives them
+    /// clamped to ±`f32::MAX` (NaN as 0). Only inputs near `f32::MAX` do this.
+    pub fn overflowed_pixels(&self) -> usize {
+        self.sums
+            .iter()
+            .zip(&self.weights)
+            .filter(|(s, w)| !(s.is_finite() && w.is_finite()))
+            .count()
     }
 
     /// The sum of weights at pixel `(x, y)` (the sample count under a box filter).
@@ -234,6 +252,18 @@ impl Film {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sums_past_single_precision_give_finite_pixels_and_are_counted() {
+        let mut f = Film::new(2, 1);
+        for _ in 0..4 {
+            f.add_sample(0, 0, Some(Rgb::new(3e38, 1.0, 0.0)), 1.0);
+            f.add_sample(1, 0, Some(Rgb::gray(0.5)), 1.0);
+        }
+        assert_eq!(f.pixel(0, 0), Rgb::new(f32::MAX, 1.0, 0.0));
+        assert_eq!(f.pixel(1, 0), Rgb::gray(0.5));
+        assert_eq!(f.overflowed_pixels(), 1);
+    }
 
     #[test]
     fn a_pixel_is_the_mean_of_its_samples() {

@@ -134,13 +134,19 @@ impl Sphere {
 
     /// The outward unit normal at `p`: the line from the centre through the point.
     pub fn normal_at(&self, p: Vec3) -> Vec3 {
-        (p - self.center).normalize()
+        // A point that rounds onto the centre (a tiny sphere far out, where a scene file's
+        // check does not reach: a moved one) still gets a unit normal.
+        (p - self.center).normalize_or(Vec3::Z)
     }
 
     /// `p` moved radially onto the surface, which removes most of the rounding error of `o + t·d`.
     pub fn project_to_surface(&self, p: Vec3) -> Vec3 {
         let d = p - self.center;
-        self.center + d * (self.radius / d.length())
+        let length = d.length();
+        if length.is_nan() || length == 0.0 {
+            return p;
+        }
+        self.center + d * (self.radius / length)
     }
 
     /// The bounding box.
@@ -155,6 +161,18 @@ impl Sphere {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_point_that_rounds_onto_the_centre_keeps_finite_geometry() {
+        // 1e-8 is far below the spacing of floats at 5e19: every hit rounds to the centre.
+        let s = Sphere {
+            center: Vec3::new(0.1, 0.2, -5e19),
+            radius: 1e-8,
+        };
+        let p = s.project_to_surface(s.center);
+        assert_eq!(p, s.center);
+        assert_eq!(s.normal_at(p), Vec3::Z);
+    }
 
     #[test]
     fn the_lat_long_map_is_the_environments() {
