@@ -185,6 +185,74 @@ fn check_header(path: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The header attributes of a film file, read without its pixels: what a caller can check
+/// before paying for them (a finished shard given to `--resume`).
+pub fn read_meta(path: &Path) -> anyhow::Result<FilmMeta> {
+    check_header(path)?;
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
+    meta_of(&meta.headers[0].own_attributes, path)
+}
+
+/// The `lucent.` attributes of a film's layer, checked.
+fn meta_of(attributes: &LayerAttributes, path: &Path) -> anyhow::Result<FilmMeta> {
+    let not_ours = |why: &str| {
+        anyhow!(
+            "{}: not a lucent partial film or checkpoint ({why})",
+            path.display()
+        )
+    };
+    let attr = |key: &str| attribute(attributes, key, path);
+    let shard = attr("shard")?;
+    let (index, count) = shard
+        .split_once('/')
+        .ok_or_else(|| not_ours("a garbled shard"))?;
+    let shard = Shard {
+        index: index.parse().map_err(|_| not_ours("a garbled shard"))?,
+        count: count.parse().map_err(|_| not_ours("a garbled shard"))?,
+    };
+    if shard.count == 0
+        || shard.index >= shard.count
+        || u64::from(shard.count) > lucent_scene::build::MAX_PIXELS
+    {
+        return Err(not_ours("a shard index out of range"));
+    }
+    Ok(FilmMeta {
+        fingerprint: attr("fingerprint")?,
+        shard,
+        spp: attr("spp")?
+            .parse()
+            .map_err(|_| not_ours("a garbled spp"))?,
+        tile: attr("tile")?
+            .parse()
+            .ok()
+            .filter(|&t| t > 0)
+            .ok_or_else(|| not_ours("a garbled tile size"))?,
+        scene: attr("scene")?,
+        overrides: attr("overrides")?,
+        output: attr("output")?,
+    })
+}
+
+/// The text attribute `lucent.{key}` of a film's layer.
+fn attribute(attributes: &LayerAttributes, key: &str, path: &Path) -> anyhow::Result<String> {
+    let not_ours = |why: &str| {
+        anyhow!(
+            "{}: not a lucent partial film or checkpoint ({why})",
+            path.display()
+        )
+    };
+    match attributes
+        .other
+        .get(&Text::new_or_panic(format!("lucent.{key}")))
+    {
+        Some(AttributeValue::Text(t)) => {
+            unescape(&t.to_string()).ok_or_else(|| not_ours(&format!("a garbled `{key}`")))
+        }
+        _ => Err(not_ours(&format!("no `lucent.{key}` attribute"))),
+    }
+}
+
 /// Reads a film file written by [`write_film`], checking that it is one.
 pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
     let not_ours = |why: &str| {
@@ -203,47 +271,7 @@ pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
         .from_file(path)
         .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
     let layer = &image.layer_data;
-    let attr = |key: &str| -> anyhow::Result<String> {
-        match layer
-            .attributes
-            .other
-            .get(&Text::new_or_panic(format!("lucent.{key}")))
-        {
-            Some(AttributeValue::Text(t)) => {
-                unescape(&t.to_string()).ok_or_else(|| not_ours(&format!("a garbled `{key}`")))
-            }
-            _ => Err(not_ours(&format!("no `lucent.{key}` attribute"))),
-        }
-    };
-    let shard = attr("shard")?;
-    let (index, count) = shard
-        .split_once('/')
-        .ok_or_else(|| not_ours("a garbled shard"))?;
-    let shard = Shard {
-        index: index.parse().map_err(|_| not_ours("a garbled shard"))?,
-        count: count.parse().map_err(|_| not_ours("a garbled shard"))?,
-    };
-    if shard.count == 0
-        || shard.index >= shard.count
-        || u64::from(shard.count) > lucent_scene::build::MAX_PIXELS
-    {
-        return Err(not_ours("a shard index out of range"));
-    }
-    let meta = FilmMeta {
-        fingerprint: attr("fingerprint")?,
-        shard,
-        spp: attr("spp")?
-            .parse()
-            .map_err(|_| not_ours("a garbled spp"))?,
-        tile: attr("tile")?
-            .parse()
-            .ok()
-            .filter(|&t| t > 0)
-            .ok_or_else(|| not_ours("a garbled tile size"))?,
-        scene: attr("scene")?,
-        overrides: attr("overrides")?,
-        output: attr("output")?,
-    };
+    let meta = meta_of(&layer.attributes, path)?;
     let find = |name: &str| {
         layer
             .channel_data
@@ -280,7 +308,7 @@ pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
         weights,
         samples,
     };
-    if attr("checksum")? != checksum(&data) {
+    if attribute(&layer.attributes, "checksum", path)? != checksum(&data) {
         bail!(
             "{}: corrupted: the pixel data does not match its checksum",
             path.display()

@@ -310,6 +310,16 @@ fn plan_resume(args: &RenderArgs, ckpt: &Path) -> anyhow::Result<Plan> {
             "--resume takes the scene and its settings from the checkpoint: give no scene, settings or --shard with it"
         );
     }
+    // A finished shard is its own output: said from the header, before its pixels are read.
+    let meta = crate::film_file::read_meta(ckpt)?;
+    if absolute(Path::new(&meta.output)) == absolute(ckpt) {
+        bail!(
+            "{}: this is shard {}/{}'s finished partial film, not a checkpoint: it holds all its samples, and nothing is left to resume (combine the shards with `lucent merge`)",
+            ckpt.display(),
+            meta.shard.index,
+            meta.shard.count
+        );
+    }
     let (film, meta) = read_film(ckpt)?;
     let overrides = crate::cli::Overrides::from_pairs(&meta.overrides)
         .map_err(|e| anyhow!("{}: {e}", ckpt.display()))?;

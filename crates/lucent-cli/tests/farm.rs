@@ -622,6 +622,11 @@ fn bad_plans_are_refused_before_any_work() {
     // 40×30 pixels are 3×2 tiles of 16: at most 6 shards.
     assert_refused(&run(&["--shard", "0/7", "-o", "c.exr"]), "only 6 tiles");
     assert_success(&run(&["--shard", "5/6", "-o", "c.exr"]));
+    // A finished shard given to --resume is named for what it is, from its header alone.
+    assert_refused(
+        &run_in(d, &["render", "--resume", "c.exr"]),
+        "this is shard 5/6's finished partial film, not a checkpoint",
+    );
 
     // A film whose header claims an enormous image is refused before its pixels are read.
     let mut bytes = std::fs::read(d.join("c.exr")).unwrap();
