@@ -10,10 +10,11 @@
 //!    distance from the plane removed; each carries a bound on its remaining error
 //!    ([`SurfaceHit::error`], pbrt's `pError`).
 //! 2. **An offset off the surface.** The origin moves along the geometric normal, to the side
-//!    the ray leaves on, by the error bound projected on the normal, and then by 256 units in
-//!    the last place of each coordinate (Wächter & Binder, "A Fast and Robust Method for
-//!    Avoiding Self-Intersection", Ray Tracing Gems, 2019), or a small fixed amount near the
-//!    origin where ulps vanish.
+//!    the ray leaves on, by the error bound projected on the normal, and each coordinate is
+//!    then rounded one float further away (pbrt-v4's `OffsetRayOrigin`). Nothing is fixed in
+//!    size: a scene 1e5 from the origin, or scaled by 1e-6, is offset in proportion. (Wächter
+//!    & Binder's 256 ulps on top of the bound moved origins by 2 units at 1e5, over a unit
+//!    sphere's shadow; their fixed 1.5e-5 near the origin was larger than a scene at 1e-6.)
 //! 3. **The surface left is known.** A plane or triangle cannot be met again by a ray leaving
 //!    it; a sphere cannot be met again by a ray leaving it outwards, and one going inwards
 //!    meets it only at its far side. [`Leaving`] tells the scene queries so.
@@ -22,32 +23,26 @@ use crate::shape::{SurfaceHit, SurfaceId};
 use glam::Vec3;
 use lucent_accel::Ray;
 
-/// Below this magnitude a coordinate is offset by a fixed amount rather than in ulps.
-const ORIGIN: f32 = 1.0 / 32.0;
-/// The fixed offset near the origin, per unit of normal.
-const FLOAT_SCALE: f32 = 1.0 / 65536.0;
-/// The offset in ulps, per unit of normal.
-const INT_SCALE: f32 = 256.0;
-
 /// `p` moved off the surface along `n` (unit, pointing to the side the new ray leaves on) by
-/// the error bound `error` projected on `n`, then by a few ulps.
+/// the error bound `error` projected on `n`, each coordinate then moved one float further to
+/// the normal's side (pbrt-v4's `OffsetRayOrigin`): the sum itself rounds, possibly back
+/// towards the surface. The move scales with the hit's own error, so it is as small relative to the scene
+/// 1e5 from the origin as at it, and at a scale of 1e-6 as at 1.
 #[inline]
 pub fn offset_origin(p: Vec3, n: Vec3, error: Vec3) -> Vec3 {
-    let p = p + n.abs().dot(error) * n;
-    let offset_axis = |p: f32, n: f32| -> f32 {
-        if p.abs() < ORIGIN {
-            return p + FLOAT_SCALE * n;
+    let offset = n.abs().dot(error) * n;
+    let moved = p + offset;
+    // By the normal's signs, not the offset's: with no error the origin still leaves.
+    let away = |v: f32, n: f32| -> f32 {
+        if n > 0.0 {
+            v.next_up()
+        } else if n < 0.0 {
+            v.next_down()
+        } else {
+            v
         }
-        let ulps = (INT_SCALE * n) as i32;
-        // Adding to the bit pattern of a negative float moves it towards −∞, so flip the sign.
-        let step = if p < 0.0 { ulps.wrapping_neg() } else { ulps };
-        f32::from_bits((p.to_bits() as i32).wrapping_add(step) as u32)
     };
-    Vec3::new(
-        offset_axis(p.x, n.x),
-        offset_axis(p.y, n.y),
-        offset_axis(p.z, n.z),
-    )
+    Vec3::new(away(moved.x, n.x), away(moved.y, n.y), away(moved.z, n.z))
 }
 
 /// The surface a secondary ray leaves, for the scene queries to leave out.
