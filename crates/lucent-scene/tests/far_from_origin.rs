@@ -8,7 +8,7 @@
 //! fixed offset near the origin larger than the scene). Offsets of 1e7 are out of reach in
 //! single precision world coordinates (a unit sphere there is two ulps wide).
 
-use lucent::render::{Hooks, RenderSettings, render};
+use lucent::render::{Hooks, render};
 use lucent_scene::SceneFile;
 use std::path::PathBuf;
 
