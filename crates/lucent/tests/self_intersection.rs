@@ -76,14 +76,27 @@ fn spheres_small_and_large_near_and_far_from_the_origin() {
         // Large spheres whose surface passes near the origin: a ground sphere.
         (Vec3::new(0.0, -1000.0, 0.0), 1000.0),
         (Vec3::new(0.0, -1e5, 0.0), 1e5),
+        // Issue 26's offsets and scales: a unit sphere 1e5 out, and one scaled by 1e-6 and 1e6.
+        (Vec3::splat(1e5), 1.0),
+        (Vec3::new(1e5, -1e5, 3e4), 2.0),
+        (Vec3::splat(1e-6), 1e-6),
+        (Vec3::splat(1e6), 1e6),
     ] {
         check_convex(
             &sphere_scene(Sphere { center, radius }),
             center,
             radius,
-            20_000,
+            rays(20_000),
         );
     }
+}
+
+/// `n` rays per case, or `SELF_INTERSECTION_RAYS` of them (10⁶ for the issue's measure).
+fn rays(n: usize) -> usize {
+    std::env::var("SELF_INTERSECTION_RAYS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(n)
 }
 
 #[test]
@@ -93,12 +106,15 @@ fn meshes_small_and_large_near_and_far_from_the_origin() {
         (Vec3::new(1e4, 2e3, -5e3), 50.0),
         (Vec3::new(0.5, 0.5, 0.5), 0.02),
         (Vec3::new(0.0, -1000.0, 0.0), 1000.0),
+        (Vec3::splat(1e5), 1.0),
+        (Vec3::splat(1e-6), 1e-6),
+        (Vec3::splat(1e6), 1e6),
     ] {
         check_convex(
             &mesh_scene(placed(icosphere(3), radius, center)),
             center,
             radius,
-            4_000,
+            rays(4_000),
         );
     }
 }
