@@ -151,12 +151,7 @@ const CHANNELS: [(&str, exr::meta::attribute::SampleType); 5] = {
 /// Checks the header before any pixel is read: one layer of a size lucent renders, with the
 /// film's channels — so that a hostile file cannot make the reader allocate gigabytes.
 fn check_header(path: &Path) -> anyhow::Result<()> {
-    let not_ours = |why: String| {
-        anyhow!(
-            "{}: not a lucent partial film or checkpoint ({why})",
-            path.display()
-        )
-    };
+    let not_ours = |why: String| not_ours(path, &why);
     let meta = exr::meta::MetaData::read_from_file(path, false)
         .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
     let [header] = meta.headers.as_slice() else {
@@ -185,6 +180,14 @@ fn check_header(path: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The error for a file at `path` that is not a film, and why.
+fn not_ours(path: &Path, why: &str) -> anyhow::Error {
+    anyhow!(
+        "{}: not a lucent partial film or checkpoint ({why})",
+        path.display()
+    )
+}
+
 /// The header attributes of a film file, read without its pixels: what a caller can check
 /// before paying for them (a finished shard given to `--resume`).
 pub fn read_meta(path: &Path) -> anyhow::Result<FilmMeta> {
@@ -196,12 +199,7 @@ pub fn read_meta(path: &Path) -> anyhow::Result<FilmMeta> {
 
 /// The `lucent.` attributes of a film's layer, checked.
 fn meta_of(attributes: &LayerAttributes, path: &Path) -> anyhow::Result<FilmMeta> {
-    let not_ours = |why: &str| {
-        anyhow!(
-            "{}: not a lucent partial film or checkpoint ({why})",
-            path.display()
-        )
-    };
+    let not_ours = |why: &str| not_ours(path, why);
     let attr = |key: &str| attribute(attributes, key, path);
     let shard = attr("shard")?;
     let (index, count) = shard
@@ -236,12 +234,7 @@ fn meta_of(attributes: &LayerAttributes, path: &Path) -> anyhow::Result<FilmMeta
 
 /// The text attribute `lucent.{key}` of a film's layer.
 fn attribute(attributes: &LayerAttributes, key: &str, path: &Path) -> anyhow::Result<String> {
-    let not_ours = |why: &str| {
-        anyhow!(
-            "{}: not a lucent partial film or checkpoint ({why})",
-            path.display()
-        )
-    };
+    let not_ours = |why: &str| not_ours(path, why);
     match attributes
         .other
         .get(&Text::new_or_panic(format!("lucent.{key}")))
@@ -255,12 +248,7 @@ fn attribute(attributes: &LayerAttributes, key: &str, path: &Path) -> anyhow::Re
 
 /// Reads a film file written by [`write_film`], checking that it is one.
 pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
-    let not_ours = |why: &str| {
-        anyhow!(
-            "{}: not a lucent partial film or checkpoint ({why})",
-            path.display()
-        )
-    };
+    let not_ours = |why: &str| not_ours(path, why);
     check_header(path)?;
     let image = read()
         .no_deep_data()

@@ -316,14 +316,7 @@ impl Reader<'_> {
             }
             self.pos += 1;
         }
-        let start = self.pos;
-        while self
-            .bytes
-            .get(self.pos)
-            .is_some_and(|c| !c.is_ascii_whitespace())
-        {
-            self.pos += 1;
-        }
+        let start = self.skip_word();
         if start == self.pos {
             return Err(self.truncated(what));
         }
@@ -345,6 +338,19 @@ impl Reader<'_> {
         Ok(value)
     }
 
+    /// ASCII: moves past the word at the position (none at whitespace); returns where it began.
+    fn skip_word(&mut self) -> usize {
+        let start = self.pos;
+        while self
+            .bytes
+            .get(self.pos)
+            .is_some_and(|c| !c.is_ascii_whitespace())
+        {
+            self.pos += 1;
+        }
+        start
+    }
+
     /// ASCII: the end of one element's line. PLY writes each element on a line of its own, so
     /// a value left over is an error (read on, it would shift every later value).
     fn end_row(&mut self, what: &str) -> Result<(), LoadError> {
@@ -356,14 +362,7 @@ impl Reader<'_> {
                 b'\n' | b'\r' => return Ok(()),
                 c if c.is_ascii_whitespace() => self.pos += 1,
                 _ => {
-                    let start = self.pos;
-                    while self
-                        .bytes
-                        .get(self.pos)
-                        .is_some_and(|c| !c.is_ascii_whitespace())
-                    {
-                        self.pos += 1;
-                    }
+                    let start = self.skip_word();
                     let word = String::from_utf8_lossy(&self.bytes[start..self.pos]);
                     return Err(LoadError::line(
                         self.path,
