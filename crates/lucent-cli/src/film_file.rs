@@ -96,7 +96,17 @@ fn checksum(data: &FilmData) -> String {
 
 /// Writes `film` and `meta` to `path` (atomically: a temporary file, then a rename).
 pub fn write_film(path: &Path, film: &Film, meta: &FilmMeta) -> anyhow::Result<()> {
-    let data = film.to_data();
+    let mut data = film.to_data();
+    // Sums that overflowed (inputs near f32::MAX) are stored clamped to the largest float (NaN
+    // as 0), so that the film reads back, merges and resumes instead of being taken for a
+    // damaged file.
+    for v in data.sums.iter_mut().flatten() {
+        *v = if v.is_nan() {
+            0.0
+        } else {
+            v.clamp(-f32::MAX, f32::MAX)
+        };
+    }
     let size = (data.width as usize, data.height as usize);
     let channel = |name: &str, f: &dyn Fn(usize) -> f32| {
         AnyChannel::new(
@@ -353,5 +363,13 @@ mod tests {
         let (back, back_meta) = read_film(&path).unwrap();
         assert_eq!(back, film);
         assert_eq!(back_meta, meta);
+        // A sum that overflowed is stored clamped to the largest float: it reads back, finite.
+        film.add_sample(0, 0, Some(lucent::Rgb::gray(3e38)), 1.0);
+        film.add_sample(0, 0, Some(lucent::Rgb::gray(3e38)), 1.0);
+        assert_eq!(film.overflowed_pixels(), 1);
+        write_film(&path, &film, &meta).unwrap();
+        let (back, _) = read_film(&path).unwrap();
+        assert_eq!(back.overflowed_pixels(), 0);
+        assert!(back.pixel(0, 0).r >= 1e38 && back.pixel(0, 0).is_finite());
     }
 }
