@@ -158,9 +158,9 @@ const CHANNELS: [(&str, exr::meta::attribute::SampleType); 5] = {
     ]
 };
 
-/// Checks the header before any pixel is read: one layer of a size lucent renders, with the
+/// The header, checked before any pixel is read: one layer of a size lucent renders, with the
 /// film's channels — so that a hostile file cannot make the reader allocate gigabytes.
-fn check_header(path: &Path) -> anyhow::Result<()> {
+fn check_header(path: &Path) -> anyhow::Result<exr::meta::MetaData> {
     let not_ours = |why: String| not_ours(path, &why);
     let meta = exr::meta::MetaData::read_from_file(path, false)
         .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
@@ -187,7 +187,7 @@ fn check_header(path: &Path) -> anyhow::Result<()> {
     if channels != want || header.deep {
         return Err(not_ours("other channels than a film's".to_string()));
     }
-    Ok(())
+    Ok(meta)
 }
 
 /// The error for a file at `path` that is not a film, and why.
@@ -201,9 +201,7 @@ fn not_ours(path: &Path, why: &str) -> anyhow::Error {
 /// The header attributes of a film file, read without its pixels: what a caller can check
 /// before paying for them (a finished shard given to `--resume`).
 pub fn read_meta(path: &Path) -> anyhow::Result<FilmMeta> {
-    check_header(path)?;
-    let meta = exr::meta::MetaData::read_from_file(path, false)
-        .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
+    let meta = check_header(path)?;
     meta_of(&meta.headers[0].own_attributes, path)
 }
 

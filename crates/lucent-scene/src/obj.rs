@@ -110,27 +110,26 @@ impl ObjFile {
             None => None,
             Some(name) => Some(*self.material_index.get(name)?),
         };
-        let indices: &[u32] = match wanted {
+        // A part's run of triangle indices, or every triangle (the other side empty), chained:
+        // neither is copied into a list.
+        let (run, whole): (&[u32], &[[Corner; 3]]) = match wanted {
             Some(w) => {
                 let run = self.material_starts[w as usize] as usize
                     ..self.material_starts[w as usize + 1] as usize;
-                &self.by_material[run]
+                (&self.by_material[run], &[])
             }
-            None => &[],
+            None => (&[], &self.triangles),
         };
-        let selected: Vec<&[Corner; 3]> = match wanted {
-            Some(_) => indices
-                .iter()
-                .map(|&i| &self.triangles[i as usize])
-                .collect(),
-            None => self.triangles.iter().collect(),
-        };
+        let selected = run
+            .iter()
+            .map(|&i| &self.triangles[i as usize])
+            .chain(whole);
         let mut all_normals = true;
         let mut any_texcoords = false;
         let mut count = 0usize;
-        for t in &selected {
+        for t in selected.clone() {
             count += 1;
-            for c in t.iter() {
+            for c in t {
                 all_normals &= c[2] != NONE;
                 any_texcoords |= c[1] != NONE;
             }

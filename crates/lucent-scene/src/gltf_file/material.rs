@@ -223,6 +223,25 @@ impl Reader<'_, '_> {
         })
     }
 
+    /// Extension `ext`'s number `factor` (default 0, clamped to [0, 1]) times the linear
+    /// `channel` of its texture `texture`, if any; `None` where that is 0 everywhere.
+    fn unit_factor(
+        &mut self,
+        ext: &Value,
+        factor: &str,
+        texture: &str,
+        channel: Channel,
+    ) -> Result<Option<Spanned<TextureDesc>>, String> {
+        let t = self.scaled(
+            Rgb::gray(number(ext, factor, 0.0).clamp(0.0, 1.0)),
+            Slot::of_json(ext.get(texture)),
+            texture,
+            Encoding::Linear,
+            channel,
+        )?;
+        Ok(unless_default(t, 0.0))
+    }
+
     /// A colour with negative or non-finite channels (which glTF does not allow) set to 0.
     fn clean(&mut self, c: Rgb, what: &str) -> Rgb {
         let v = c.to_array();
@@ -440,22 +459,13 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
         }
     }
     if let Some(c) = m.extension_value("KHR_materials_clearcoat") {
-        let weight = r.scaled(
-            Rgb::gray(number(c, "clearcoatFactor", 0.0).clamp(0.0, 1.0)),
-            Slot::of_json(c.get("clearcoatTexture")),
-            "clearcoatTexture",
-            Encoding::Linear,
-            Channel::R,
-        )?;
-        d.clearcoat = unless_default(weight, 0.0);
-        let rough = r.scaled(
-            Rgb::gray(number(c, "clearcoatRoughnessFactor", 0.0).clamp(0.0, 1.0)),
-            Slot::of_json(c.get("clearcoatRoughnessTexture")),
+        d.clearcoat = r.unit_factor(c, "clearcoatFactor", "clearcoatTexture", Channel::R)?;
+        d.clearcoat_roughness = r.unit_factor(
+            c,
+            "clearcoatRoughnessFactor",
             "clearcoatRoughnessTexture",
-            Encoding::Linear,
             Channel::G,
         )?;
-        d.clearcoat_roughness = unless_default(rough, 0.0);
         if let Some(slot) = Slot::of_json(c.get("clearcoatNormalTexture"))
             && d.clearcoat.is_some()
             && let Some(t) = r.image(
@@ -481,14 +491,12 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
         )?;
         if color != TextureDesc::Solid(Rgb::BLACK) {
             d.sheen_color = Some(color);
-            let rough = r.scaled(
-                Rgb::gray(number(s, "sheenRoughnessFactor", 0.0).clamp(0.0, 1.0)),
-                Slot::of_json(s.get("sheenRoughnessTexture")),
+            d.sheen_roughness = r.unit_factor(
+                s,
+                "sheenRoughnessFactor",
                 "sheenRoughnessTexture",
-                Encoding::Linear,
                 Channel::A,
             )?;
-            d.sheen_roughness = unless_default(rough, 0.0);
         }
     }
     if let Some(a) = m.extension_value("KHR_materials_anisotropy") {
@@ -530,14 +538,7 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
 
 /// `KHR_materials_iridescence`: the film's weight, index and thickness (nanometres).
 fn iridescence(r: &mut Reader, i: &Value, d: &mut MaterialDesc) -> Result<(), String> {
-    let weight = r.scaled(
-        Rgb::gray(number(i, "iridescenceFactor", 0.0).clamp(0.0, 1.0)),
-        Slot::of_json(i.get("iridescenceTexture")),
-        "iridescenceTexture",
-        Encoding::Linear,
-        Channel::R,
-    )?;
-    d.iridescence = unless_default(weight, 0.0);
+    d.iridescence = r.unit_factor(i, "iridescenceFactor", "iridescenceTexture", Channel::R)?;
     if d.iridescence.is_none() {
         return Ok(());
     }
