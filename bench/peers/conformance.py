@@ -297,7 +297,18 @@ CASES["principledthin"] = (
     '<float name="eta" value="1.4"/></bsdf>',
 )
 
-
+# The sensors other than the pinhole: a diffuse ball seen through an orthographic view (its
+# to_world's scale sizes the view) and through a thin lens focused on the ball's front.
+DIFFUSE = '<bsdf type="diffuse"><rgb name="reflectance" value="0.5, 0.3, 0.2"/></bsdf>'
+CASES["sensor-orthographic"] = (BALL, DIFFUSE)
+CASES["sensor-thinlens"] = (BALL, DIFFUSE)
+SENSORS = {
+    "sensor-orthographic": """<sensor type="orthographic">
+        <transform name="to_world"><scale x="1.8" y="1.8"/><lookat origin="0, 1.2, 4.2" target="0, 0, 0" up="0, 1, 0"/></transform>""",
+    "sensor-thinlens": """<sensor type="thinlens">
+        <float name="fov" value="28"/><float name="aperture_radius" value="0.12"/><float name="focus_distance" value="3.4"/>
+        <transform name="to_world"><lookat origin="0, 1.2, 4.2" target="0, 0, 0" up="0, 1, 0"/></transform>""",
+}
 # The cases lit otherwise than by the sky and the spherical sun: smooth mirrors and glass (a
 # small sun seen in a mirror, or focused by glass onto the floor, is found only by chance;
 # a directional one is found by neither renderer) and the matte planes.
@@ -315,6 +326,8 @@ LIGHTS = {
         "mask",
         "twosided",
         "blendbsdf-textured",
+        "sensor-orthographic",
+        "sensor-thinlens",
     ]
 }
 LIGHTS["roughplastic-ggx-0.2-floor"] = SKY
@@ -326,7 +339,12 @@ def scene_text(name):
     eye = "0, 2.5, 5.5" if plane else "0, 1.2, 4.2"
     fov = "42" if plane else "28"
     lights = LIGHTS.get(name, SKY_AND_SUN)
-    return HEAD.format(fov=fov, eye=eye, size=SIZE, lights=lights) + shape.format(bsdf=bsdf)
+    head = HEAD.format(fov=fov, eye=eye, size=SIZE, lights=lights)
+    if name in SENSORS:
+        start = head.index("<sensor")
+        end = head.index("\n", head.index("<transform name=\"to_world\">", start))
+        head = head[:start] + SENSORS[name] + head[end:]
+    return head + shape.format(bsdf=bsdf)
 
 
 def write(_args):

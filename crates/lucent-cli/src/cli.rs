@@ -3,6 +3,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use lucent::accel::AccelKind;
 use lucent::schedule::frameless::DisplayMode;
+use lucent_scene::framing::{Axis, View};
 use std::path::PathBuf;
 
 /// lucent: a ray tracer for learning, teaching and using ray tracing.
@@ -220,6 +221,45 @@ pub struct Overrides {
     /// instant alone: there is no shutter, so nothing is motion-blurred.
     #[arg(long, value_name = "SECONDS", value_parser = instant)]
     pub time: Option<f64>,
+    /// How a scene without a camera is framed.
+    #[command(flatten)]
+    pub framing: FramingArgs,
+}
+
+/// How a scene without a camera of its own (a bare mesh file) is framed: `--up` and `--view`.
+/// A scene with a camera keeps it, with a warning that they are ignored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Args)]
+pub struct FramingArgs {
+    /// The model's up axis, for the camera that frames a scene without one (`+x`, `+y` and
+    /// `+z` are taken too). Default: guessed for OBJ and PLY files (a note says what and why),
+    /// +y for glTF and Mitsuba files.
+    #[arg(long, value_name = "AXIS", allow_hyphen_values = true, ignore_case = true,
+          value_parser = axis_parser())]
+    pub up: Option<Axis>,
+    /// Where that camera looks from: `front` (the default; a little above), `side` (from the
+    /// model's right), `top` (down the up axis, the model's front at the image's bottom) or
+    /// `iso` (from the front right, 35° above).
+    #[arg(long, ignore_case = true, value_parser = view_parser())]
+    pub view: Option<View>,
+}
+
+/// An up axis by name (`x` … `-z`, `+x` too).
+fn axis_parser() -> impl clap::builder::TypedValueParser<Value = Axis> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    let values = Axis::ALL.map(|a| {
+        let value = PossibleValue::new(a.name());
+        match a.signed_name() {
+            signed if signed.starts_with('+') => value.alias(signed),
+            _ => value,
+        }
+    });
+    PossibleValuesParser::new(values).map(|s| s.parse().expect("a listed axis"))
+}
+
+/// A view by name.
+fn view_parser() -> impl clap::builder::TypedValueParser<Value = View> {
+    use clap::builder::{PossibleValuesParser, TypedValueParser};
+    PossibleValuesParser::new(View::ALL.map(View::name)).map(|s| s.parse().expect("a listed view"))
 }
 
 /// A finite number of seconds, negative allowed (motions run both ways in time).
@@ -350,6 +390,9 @@ pub struct ViewArgs {
     /// Refuse files named by the scene outside its folder.
     #[arg(long)]
     pub sandbox: bool,
+    /// How a scene without a camera is framed.
+    #[command(flatten)]
+    pub framing: FramingArgs,
 }
 
 impl ViewArgs {
@@ -362,6 +405,7 @@ impl ViewArgs {
             seed: self.seed,
             accel: self.accel,
             sandbox: self.sandbox,
+            framing: self.framing,
             ..Overrides::default()
         }
     }
@@ -405,6 +449,9 @@ pub struct ConvertArgs {
     /// Refuse files named by the scene outside its folder.
     #[arg(long)]
     pub sandbox: bool,
+    /// How a scene without a camera is framed (the framing camera is written out).
+    #[command(flatten)]
+    pub framing: FramingArgs,
 }
 
 /// `lucent gallery`.

@@ -21,7 +21,9 @@ pub fn run(args: &ConvertArgs) -> anyhow::Result<ExitCode> {
         sandbox: args.sandbox,
     };
     let mut file = SceneFile::read_with(&args.input, &options)?;
-    let loaded = file.build()?;
+    let framing_warning = crate::job::frame(&mut file, &args.framing);
+    let mut loaded = file.build()?;
+    loaded.warnings.extend(framing_warning);
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }

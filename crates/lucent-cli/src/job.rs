@@ -1,13 +1,16 @@
 //! A render job: the scene, the command line's overrides, and the fingerprint that tells
 //! whether two renders (shards, a checkpoint and its resumption) draw the same image.
 
-use crate::cli::{AaArg, FilterArg, FilterSamplingArg, IntegratorArg, Overrides, TriangleTestArg};
+use crate::cli::{
+    AaArg, FilterArg, FilterSamplingArg, FramingArgs, IntegratorArg, Overrides, TriangleTestArg,
+};
 use anyhow::{anyhow, bail};
 use lucent_scene::desc::IntegratorName;
 use lucent_scene::desc::settings::{
     FilterName, FilterSamplingName, SamplingName, TriangleTestName,
 };
 use lucent_scene::desc::values::Finite;
+use lucent_scene::framing::{Axis, Framing};
 use lucent_scene::hash::Fingerprint;
 use lucent_scene::{LoadOptions, Loaded, SceneFile, Spanned};
 use std::path::{Path, PathBuf};
@@ -26,6 +29,8 @@ pub struct Job {
     /// rebuilds it at the window's size.
     #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
     pub camera: lucent_scene::desc::CameraDesc,
+    /// How the camera frames a scene without one (`None`: the scene's own camera).
+    pub framing: Option<Framing>,
 }
 
 impl Job {
@@ -55,6 +60,7 @@ impl Job {
         start: std::time::Instant,
     ) -> anyhow::Result<Self> {
         apply(&mut file, overrides)?;
+        let framing_warning = frame(&mut file, &overrides.framing);
         let mut loaded = file.build()?;
         if let Some(t) = overrides.time {
             if loaded.scene.is_animated() {
@@ -65,6 +71,7 @@ impl Job {
                     .push("--time has no effect: nothing in the scene moves".to_string());
             }
         }
+        loaded.warnings.extend(framing_warning);
         for w in &loaded.warnings {
             eprintln!("warning: {w}");
         }
@@ -79,13 +86,15 @@ impl Job {
             loaded,
             load_time: start.elapsed(),
             camera,
+            framing: (!file.camera_given).then(|| file.framing()),
         })
     }
 
     /// Hex fingerprint of the scene's inputs (scene text, mesh files) and of every setting that
     /// shapes the image: resolution, samples, seed, tile size (the unit of shards), integrator
     /// and triangle test — and lucent's version, since another build may draw other bits.
-    /// Threads and the accelerator change nothing in the image, so they are left out.
+    /// Threads and the accelerator change nothing in the image, so they are left out. A
+    /// framed scene adds its framing (its camera is in no file).
     pub fn fingerprint(&self) -> String {
         let s = &self.loaded.settings;
         let c = &self.loaded.scene.camera;
@@ -107,6 +116,9 @@ impl Job {
         let mut f = Fingerprint::default();
         f.add(&self.loaded.inputs.to_le_bytes());
         f.add(settings.as_bytes());
+        if let Some(framing) = self.framing {
+            f.add(format!("framing {} {}", framing.up, framing.view).as_bytes());
+        }
         format!("{:016x}", f.value())
     }
 }
@@ -155,6 +167,34 @@ pub fn available_memory() -> Option<u64> {
     let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
+}
+
+/// Frames a scene without a camera as `--up` and `--view` ask, first printing (as a note) the
+/// up axis guessed for a mesh file when `--up` does not give it. Returns the warning for a
+/// scene with its own camera, which keeps it: a script that gives the flags for every file
+/// still renders those that place their camera themselves.
+pub fn frame(file: &mut SceneFile, args: &FramingArgs) -> Option<String> {
+    if file.camera_given {
+        return (args.up.is_some() || args.view.is_some()).then(|| {
+            "--up and --view have no effect: the scene has its own camera (they frame scenes without one)"
+                .to_string()
+        });
+    }
+    if args.up.is_none()
+        && let Some(guess) = file.up_guess()
+    {
+        let hint = if guess.up == Axis::Y {
+            "--up to choose another"
+        } else {
+            "--up y to override"
+        };
+        eprintln!("note: {}: {guess}; {hint}", file.path.display());
+    }
+    file.set_framing(Framing {
+        up: args.up.unwrap_or(file.framing().up),
+        view: args.view.unwrap_or_default(),
+    });
+    None
 }
 
 /// An overridden value has no place in the file: errors about it must not point there.
@@ -331,6 +371,8 @@ impl Overrides {
             self.filter_sampling
                 .map(|v| format!("{v:?}").to_lowercase()),
         );
+        put("up", self.framing.up.map(|v| v.name().to_string()));
+        put("view", self.framing.view.map(|v| v.name().to_string()));
         pairs.join(";")
     }
 
@@ -390,6 +432,8 @@ impl Overrides {
                 }
                 "time_limit" => o.time_limit = Some(f64::from_bits(v.parse().map_err(|_| bad())?)),
                 "time" => o.time = Some(f64::from_bits(v.parse().map_err(|_| bad())?)),
+                "up" => o.framing.up = Some(v.parse().map_err(|_| bad())?),
+                "view" => o.framing.view = Some(v.parse().map_err(|_| bad())?),
                 _ => bail!("an unknown setting `{k}`"),
             }
         }
@@ -422,8 +466,22 @@ mod tests {
             filter_sampling: Some(FilterSamplingArg::Importance),
             time_limit: Some(2.5),
             time: Some(-1.25),
+            framing: FramingArgs {
+                up: Some(Axis::NegZ),
+                view: Some(lucent_scene::framing::View::Iso),
+            },
         };
         assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
+        for up in Axis::ALL {
+            let o = Overrides {
+                framing: FramingArgs {
+                    up: Some(up),
+                    view: None,
+                },
+                ..Overrides::default()
+            };
+            assert_eq!(Overrides::from_pairs(&o.to_pairs()).unwrap(), o);
+        }
         assert_eq!(Overrides::from_pairs("").unwrap(), Overrides::default());
         assert!(Overrides::from_pairs("width=x").is_err());
     }

@@ -169,13 +169,18 @@ pub fn import_gltf(
                 // Primitives of the same accessors are one part: the build stores it once and
                 // places it as instances (a small file cannot multiply a large buffer).
                 let key = *same_geometry
-                    .entry(geometry(&prim))
+                    .entry(geometry(doc.as_json(), &prim))
                     .or_insert((mesh.index(), prim.index()));
                 let triangles = match decoded.get(&key) {
                     Some(&t) => t,
                     None => {
-                        let t = match primitive::decode(&asset.buffers, key.0, &prim)
-                            .map_err(|e| asset.error(e))?
+                        let t = match primitive::decode(
+                            asset.doc.as_json(),
+                            &asset.buffers,
+                            key.0,
+                            &prim,
+                        )
+                        .map_err(|e| asset.error(e))?
                         {
                             Decoded::Triangles(_, notes) => {
                                 notes.into_iter().for_each(&mut warn);
@@ -222,19 +227,16 @@ pub fn import_gltf(
             }
         }
         if let Some(c) = node.camera() {
-            match (c.projection(), &camera) {
-                (gltf::camera::Projection::Orthographic(_), _) => warn(format!(
-                    "node {i}: camera {} is orthographic, which lucent does not have; ignored",
-                    c.index()
-                )),
-                (gltf::camera::Projection::Perspective(_), Some(_)) => warn(format!(
+            if camera.is_some() {
+                warn(format!(
                     "node {i}: camera {} ignored: the first camera is used",
                     c.index()
-                )),
-                (gltf::camera::Projection::Perspective(p), None) => match perspective(&p, world) {
-                    Ok(d) => camera = Some((d, p.aspect_ratio())),
+                ));
+            } else {
+                match camera_of(&c.projection(), world) {
+                    Ok(d) => camera = Some(d),
                     Err(why) => warn(format!("node {i}: camera {}: {why}; ignored", c.index())),
-                },
+                }
             }
         }
     }
@@ -242,6 +244,8 @@ pub fn import_gltf(
     let images = material::Images {
         root: doc.as_json(),
         base_dir: &asset.base_dir,
+        file_name: &file_name,
+        asset: Some(&asset),
         options,
     };
     let mut materials = Vec::new();
@@ -296,9 +300,9 @@ pub fn import_gltf(
 
 /// What makes a primitive's triangles: its topology and where its accessors read — the same
 /// data through two accessors is the same geometry.
-type Geometry = (String, Option<String>, Vec<(String, String)>);
+type Geometry = (String, Option<String>, Vec<(String, String)>, u32);
 
-fn geometry(prim: &gltf::Primitive) -> Geometry {
+fn geometry(root: &gltf::json::Root, prim: &gltf::Primitive) -> Geometry {
     let source = |a: &gltf::Accessor| match (a.view(), a.sparse()) {
         (Some(view), None) => format!(
             "view {} +{} {}×{:?} {:?} {}",
@@ -321,6 +325,7 @@ fn geometry(prim: &gltf::Primitive) -> Geometry {
         format!("{:?}", prim.mode()),
         prim.indices().map(|a| source(&a)),
         attributes,
+        material::uv_set(root, prim.material().index()),
     )
 }
 
@@ -367,6 +372,14 @@ impl GltfFile {
     pub fn part(&self, part: Option<&str>) -> Result<Mesh, LoadError> {
         part_of(&self.asset, part)
     }
+
+    /// The encoded bytes (PNG, JPEG …) of image `index`, which the file holds itself: in a
+    /// buffer view (as `.glb` files do) or a `data:` URI.
+    pub fn embedded_image(&self, index: u32) -> Result<Vec<u8>, LoadError> {
+        self.asset
+            .embedded_image(index as usize)
+            .map_err(|e| self.asset.error(format!("image {index}: {e}")))
+    }
 }
 
 fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
@@ -392,7 +405,9 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
                 mesh.primitives().len()
             ))
         })?;
-        return match primitive::decode(&asset.buffers, m, &prim).map_err(|e| asset.error(e))? {
+        return match primitive::decode(asset.doc.as_json(), &asset.buffers, m, &prim)
+            .map_err(|e| asset.error(e))?
+        {
             Decoded::Triangles(mesh, _) => Ok(mesh),
             Decoded::Skipped(why) => Err(asset.error(why)),
         };
@@ -413,7 +428,7 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
             let mesh = match meshes.entry(key) {
                 Entry::Occupied(e) => e.into_mut(),
                 Entry::Vacant(e) => e.insert(
-                    match primitive::decode(&asset.buffers, key.0, &prim)
+                    match primitive::decode(asset.doc.as_json(), &asset.buffers, key.0, &prim)
                         .map_err(|e| asset.error(e))?
                     {
                         Decoded::Triangles(m, _) => Some(m),
@@ -511,6 +526,32 @@ impl Asset {
 
     fn error(&self, message: impl Into<String>) -> LoadError {
         LoadError::file(&self.path, message)
+    }
+
+    /// See [`GltfFile::embedded_image`]. The JSON is read directly: the crate's
+    /// `Image::source` panics on an image with neither a URI nor a buffer view with a MIME
+    /// type, which validation lets through.
+    fn embedded_image(&self, index: usize) -> Result<Vec<u8>, String> {
+        let root = self.doc.as_json();
+        let image = root.images.get(index).ok_or_else(|| {
+            format!(
+                "there is no such image (the file has {})",
+                root.images.len()
+            )
+        })?;
+        if let Some(uri) = &image.uri {
+            return match uri.strip_prefix("data:") {
+                Some(rest) => source::decode_data_uri(rest),
+                None => Err(format!(
+                    "it is the file `{uri}`, not an image inside the glTF file"
+                )),
+            };
+        }
+        let view = image
+            .buffer_view
+            .and_then(|v| self.doc.views().nth(v.value()))
+            .ok_or("it has neither a URI nor a buffer view")?;
+        accessor::view_bytes(&self.buffers, &view).map(<[u8]>::to_vec)
     }
 
     /// The nodes of the scene (see the module's documentation) in depth-first order, with their
@@ -773,16 +814,36 @@ fn light(
     Ok((d, notes))
 }
 
-/// A perspective camera placed by `world`: eye at the node's origin, looking down its −z, its
-/// +y up; `yfov` in degrees.
-fn perspective(p: &gltf::camera::Perspective, world: Mat4) -> Result<CameraDesc, String> {
-    let fov = p.yfov().to_degrees();
-    if !(fov > 0.0 && fov < 180.0) {
-        return Err(format!(
-            "its vertical field of view {} rad is not between 0 and π",
-            p.yfov()
-        ));
-    }
+/// A camera placed by `world`, and the aspect ratio it asks for: the eye at the node's
+/// origin, looking down its −z, its +y up. Perspective: `yfov` in degrees. Orthographic: a view
+/// `2·ymag` high, of aspect `xmag / ymag`.
+fn camera_of(
+    projection: &gltf::camera::Projection,
+    world: Mat4,
+) -> Result<(CameraDesc, Option<f32>), String> {
+    let (fov, orthographic, aspect) = match projection {
+        gltf::camera::Projection::Perspective(p) => {
+            let fov = p.yfov().to_degrees();
+            if !(fov > 0.0 && fov < 180.0) {
+                return Err(format!(
+                    "its vertical field of view {} rad is not between 0 and π",
+                    p.yfov()
+                ));
+            }
+            (fov, None, p.aspect_ratio())
+        }
+        gltf::camera::Projection::Orthographic(o) => {
+            let (x, y) = (o.xmag().abs(), o.ymag().abs());
+            if !(x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite()) {
+                return Err(format!(
+                    "its orthographic magnifications {} and {} are not positive and finite",
+                    o.xmag(),
+                    o.ymag()
+                ));
+            }
+            (45.0, Some(Finite(2.0 * y)), Some(x / y))
+        }
+    };
     let eye = world.w_axis.truncate();
     let forward = world.transform_vector3(Vec3::NEG_Z).try_normalize();
     let up = world.transform_vector3(Vec3::Y).try_normalize();
@@ -792,15 +853,17 @@ fn perspective(p: &gltf::camera::Perspective, world: Mat4) -> Result<CameraDesc,
     if !eye.is_finite() || forward.cross(up).length_squared() < 1e-12 {
         return Err("its node's transform is degenerate".into());
     }
-    Ok(CameraDesc {
+    let camera = CameraDesc {
         eye: Vector(eye),
         look_at: Vector(eye + forward),
         up: Vector(up),
         fov: Finite(fov),
         aperture: None,
         focus_distance: None,
+        orthographic,
         motion: None,
-    })
+    };
+    Ok((camera, aspect))
 }
 
 /// The image width for `aspect` (width / height) at [`IMAGE_HEIGHT`] pixels high, when it is
@@ -813,11 +876,18 @@ fn image_width(aspect: f32) -> Option<u32> {
 /// Descriptions of the materials used, for tests of the mapping.
 #[cfg(test)]
 fn described(json: &str) -> Vec<(crate::desc::MaterialDesc, Vec<String>)> {
-    let doc = parse_document(json.as_bytes(), Path::new("t.gltf"), true).unwrap();
-    let (names, _) = material_names(&doc);
+    described_doc(&parse_document(json.as_bytes(), Path::new("t.gltf"), true).unwrap())
+}
+
+/// The materials of `doc` described, with their notes.
+#[cfg(test)]
+fn described_doc(doc: &gltf::Document) -> Vec<(crate::desc::MaterialDesc, Vec<String>)> {
+    let (names, _) = material_names(doc);
     let images = material::Images {
         root: doc.as_json(),
         base_dir: Path::new(""),
+        file_name: "test.gltf",
+        asset: None,
         options: &LoadOptions::default(),
     };
     doc.materials()

@@ -27,19 +27,22 @@ pub fn read_image(
     let bytes = crate::input::read(path)
         .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?;
     inputs.add(&bytes);
-    let unreadable =
-        |e: image::ImageError| LoadError::file(path, format!("cannot read the image: {e}"));
-    let mut decoder = image::ImageReader::new(std::io::Cursor::new(&bytes))
+    decode_image(&bytes, encoding).map_err(|e| LoadError::file(path, e))
+}
+
+/// The image encoded in `bytes` (PNG, JPEG, EXR, HDR …), decoded as [`read_image`] says.
+pub fn decode_image(bytes: &[u8], encoding: Encoding) -> Result<ImageTexture, String> {
+    let unreadable = |e: image::ImageError| format!("cannot read the image: {e}");
+    let mut decoder = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
-        .map_err(|e| LoadError::file(path, format!("cannot read the image: {e}")))?
+        .map_err(|e| format!("cannot read the image: {e}"))?
         .into_decoder()
         .map_err(unreadable)?;
     // The header's size, checked before anything is decoded.
     let (w, h) = image::ImageDecoder::dimensions(&decoder);
     if u64::from(w) * u64::from(h) > MAX_TEXELS {
-        return Err(LoadError::file(
-            path,
-            format!("the image is {w}×{h}: more than the {MAX_TEXELS} texels lucent reads"),
+        return Err(format!(
+            "the image is {w}×{h}: more than the {MAX_TEXELS} texels lucent reads"
         ));
     }
     let mut limits = image::Limits::default();
@@ -48,7 +51,7 @@ pub fn read_image(
     limits.max_alloc = Some(MAX_DECODE_BYTES);
     let decoded = image::ImageDecoder::set_limits(&mut decoder, limits)
         .and_then(|()| image::DynamicImage::from_decoder(decoder))
-        .map_err(|e| LoadError::file(path, format!("cannot decode the image: {e}")))?;
+        .map_err(|e| format!("cannot decode the image: {e}"))?;
     let color = decoded.color();
     let float = matches!(color, image::ColorType::Rgb32F | image::ColorType::Rgba32F);
     let wide = matches!(
@@ -101,24 +104,19 @@ pub fn read_image(
         .iter()
         .any(|t| !(t.r.is_finite() && t.g.is_finite() && t.b.is_finite()))
     {
-        return Err(LoadError::file(
-            path,
-            "the image holds values that are not finite",
-        ));
+        return Err("the image holds values that are not finite".into());
     }
     let max = lucent::texture::MAX_VALUE;
     if texels.iter().any(|t| t.max_channel() > max) {
-        return Err(LoadError::file(
-            path,
-            format!("the image holds values above {max:e}, the largest a texture may take"),
+        return Err(format!(
+            "the image holds values above {max:e}, the largest a texture may take"
         ));
     }
-    let image = ImageTexture::new(w, h, texels)
-        .ok_or_else(|| LoadError::file(path, "the image is empty"))?;
+    let image = ImageTexture::new(w, h, texels).ok_or("the image is empty")?;
     if alpha.is_empty() {
         return Ok(image);
     }
     image
         .with_alpha(alpha)
-        .ok_or_else(|| LoadError::file(path, "the image's alpha channel does not match its size"))
+        .ok_or_else(|| "the image's alpha channel does not match its size".into())
 }

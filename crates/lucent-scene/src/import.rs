@@ -7,11 +7,11 @@ use crate::desc::{
     SceneDesc, Vector,
 };
 use crate::error::LoadError;
+use crate::framing::Framing;
 use crate::hash::Fingerprint;
 use crate::paths::LoadOptions;
 use glam::Vec3;
 use lucent::Rgb;
-use lucent::accel::Aabb;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -27,9 +27,6 @@ pub struct Imported {
     pub warnings: Vec<String>,
 }
 
-/// Vertical field of view of a framing camera, in degrees.
-pub const FRAMING_FOV: f32 = 40.0;
-
 /// A placeholder camera, for files without one.
 pub fn placeholder_camera() -> Spanned<CameraDesc> {
     Spanned::new(
@@ -41,39 +38,19 @@ pub fn placeholder_camera() -> Spanned<CameraDesc> {
             fov: Finite(45.0),
             aperture: None,
             focus_distance: None,
+            orthographic: None,
             motion: None,
         },
     )
 }
 
-/// A camera that frames `bounds` from the front (+z, a little above, looking down −z), far
-/// enough back that the bounding sphere fits the narrower field of view.
-pub fn framing_camera(bounds: Aabb, width: u32, height: u32) -> CameraDesc {
-    let (center, radius) = if bounds.is_empty() {
-        (Vec3::ZERO, 1.0)
-    } else {
-        (bounds.center(), (0.5 * bounds.extent().length()).max(1e-6))
-    };
-    let aspect = width as f32 / height as f32;
-    let half = (0.5 * FRAMING_FOV).to_radians().tan();
-    let half_fov = half.min(aspect * half);
-    let distance = radius / half_fov.atan().sin();
-    CameraDesc {
-        eye: Vector(center + Vec3::new(0.0, 0.25 * radius, distance)),
-        look_at: Vector(center),
-        up: Vector(Vec3::Y),
-        fov: Finite(FRAMING_FOV),
-        aperture: None,
-        focus_distance: None,
-        motion: None,
-    }
-}
-
 /// The light a scene without any gets: white, travelling away from the upper left behind a
-/// framing camera, with a little ambient light.
+/// framing camera (of the default [`Framing`]: [`crate::SceneFile::set_framing`] turns it with
+/// the camera), with a little ambient light.
 pub fn add_default_light(desc: &mut SceneDesc) {
     let mut light = LightDesc::new(LightKind::Directional);
-    light.direction = Some(Spanned::new(0..0, Vector(Vec3::new(0.4, -0.6, -0.7))));
+    let direction = Framing::default().light_direction();
+    light.direction = Some(Spanned::new(0..0, Vector(direction)));
     desc.lights.push(Spanned::new(0..0, light));
     desc.world.ambient = Color(Rgb::gray(0.1));
     desc.world.background = Color(Rgb::gray(0.05));

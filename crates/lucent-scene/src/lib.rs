@@ -10,6 +10,7 @@
 pub mod build;
 pub mod desc;
 pub mod error;
+pub mod framing;
 pub mod gltf_file;
 pub mod hash;
 pub mod images;
@@ -21,6 +22,7 @@ pub mod mtl;
 pub mod obj;
 pub mod paths;
 pub mod ply;
+pub mod serialized;
 pub mod tangents;
 
 pub use build::{Loaded, build};
@@ -54,6 +56,12 @@ pub struct SceneFile {
     pub desc: SceneDesc,
     /// Whether the file gives a camera; if not, one frames the scene's bounds.
     pub camera_given: bool,
+    /// How a scene without a camera is framed (see [`SceneFile::set_framing`]).
+    framing: framing::Framing,
+    /// The up axis guessed for a bare OBJ or PLY mesh, and why.
+    up_guess: Option<framing::UpGuess>,
+    /// The light added to a scene without any, which turns with the framing.
+    default_light: Option<usize>,
     /// What the import could not render as written.
     pub warnings: Vec<String>,
     /// Path rules for the files it names.
@@ -117,20 +125,73 @@ impl SceneFile {
             .materials
             .iter()
             .any(|m| m.get_ref().emission.is_some());
+        let mut default_light = None;
         if desc.lights.is_empty() && !emits {
             import::add_default_light(desc);
+            default_light = Some(desc.lights.len() - 1);
         }
-        Ok(Self {
+        // OBJ and PLY files do not say which way is up (glTF is +y up by its specification,
+        // Mitsuba scenes place their own cameras): the geometry is asked. The parsed OBJ is
+        // reused; a PLY file is decoded once more by the build.
+        let up_guess = match ext.as_deref() {
+            Some("obj" | "ply") if !imported.camera_given => {
+                let mesh = preloaded.clone().read_part(
+                    path,
+                    None,
+                    options,
+                    &mut hash::Fingerprint::default(),
+                )?;
+                Some(framing::guess_up(&mesh.positions, &mesh.triangles))
+            }
+            _ => None,
+        };
+        let mut file = Self {
             path: path.to_path_buf(),
             base_dir,
             text: String::new(),
             desc: imported.desc,
             camera_given: imported.camera_given,
+            framing: framing::Framing::default(),
+            up_guess,
+            default_light,
             warnings: imported.warnings,
             options: *options,
             imported: inputs.value(),
             preloaded,
-        })
+        };
+        if let Some(g) = up_guess {
+            file.set_framing(framing::Framing {
+                up: g.up,
+                view: framing::View::Front,
+            });
+        }
+        Ok(file)
+    }
+
+    /// How a scene without a camera is framed: the up axis (guessed for OBJ and PLY files,
+    /// +y for others) and the view.
+    pub fn framing(&self) -> framing::Framing {
+        self.framing
+    }
+
+    /// The up axis guessed for an OBJ or PLY file without a camera, and why (`None` for other
+    /// scenes: nothing was guessed).
+    pub fn up_guess(&self) -> Option<framing::UpGuess> {
+        self.up_guess
+    }
+
+    /// Frames a scene without a camera this way, turning the default light (if it has it) to
+    /// stay at the upper left behind the camera. A scene with a camera keeps it: the framing
+    /// changes nothing there.
+    pub fn set_framing(&mut self, framing: framing::Framing) {
+        self.framing = framing;
+        if self.camera_given {
+            return;
+        }
+        if let Some(light) = self.default_light.and_then(|i| self.desc.lights.get_mut(i)) {
+            let direction = desc::Vector(framing.light_direction());
+            light.get_mut().direction = Some(toml::Spanned::new(0..0, direction));
+        }
     }
 
     /// The built-in default scene; relative paths in it start from the working directory.
@@ -179,6 +240,9 @@ impl SceneFile {
             text,
             desc,
             camera_given: true,
+            framing: framing::Framing::default(),
+            up_guess: None,
+            default_light: None,
             warnings: Vec::new(),
             options: LoadOptions::default(),
             imported: 0,
@@ -222,10 +286,12 @@ impl SceneFile {
         Ok(loaded)
     }
 
-    /// The camera a scene without one gets, framing the built scene's bounds.
+    /// The camera a scene without one gets, framing the built scene's bounds as
+    /// [`SceneFile::framing`] says.
     pub fn framing_camera(&self, loaded: &Loaded) -> desc::CameraDesc {
         let c = &loaded.scene.camera;
-        import::framing_camera(loaded.scene.bounds(), c.width(), c.height())
+        self.framing
+            .camera(loaded.scene.bounds(), c.width(), c.height())
     }
 
     /// Names every file of the description from `dir` instead of the scene's folder (for a

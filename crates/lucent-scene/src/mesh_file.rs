@@ -1,4 +1,5 @@
-//! Mesh files by extension: `.obj` (Wavefront), `.ply` (Stanford), `.gltf` and `.glb` (glTF 2.0).
+//! Mesh files by extension: `.obj` (Wavefront), `.ply` (Stanford), `.gltf` and `.glb` (glTF 2.0),
+//! `.serialized` (Mitsuba).
 
 use crate::error::LoadError;
 use crate::gltf_file::GltfFile;
@@ -14,7 +15,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// The extensions [`read_mesh`] knows.
-pub const MESH_EXTENSIONS: [&str; 4] = ["obj", "ply", "gltf", "glb"];
+pub const MESH_EXTENSIONS: [&str; 5] = ["obj", "ply", "gltf", "glb", "serialized"];
 
 /// The lower-case extension of `path`.
 pub fn extension(path: &Path) -> Option<String> {
@@ -103,6 +104,21 @@ impl MeshFiles {
         Ok(mesh)
     }
 
+    /// The glTF file at `path`, read once (its bytes added to `fingerprint` the first time).
+    pub fn gltf(
+        &mut self,
+        path: &Path,
+        options: &LoadOptions,
+        fingerprint: &mut Fingerprint,
+    ) -> Result<Arc<GltfFile>, LoadError> {
+        if let Some(file) = self.gltf.get(path) {
+            return Ok(file.clone());
+        }
+        let file = Arc::new(GltfFile::open(path, options, fingerprint)?);
+        self.gltf.insert(path.to_path_buf(), file.clone());
+        Ok(file)
+    }
+
     fn decode_part(
         &mut self,
         path: &Path,
@@ -112,15 +128,7 @@ impl MeshFiles {
     ) -> Result<Mesh, LoadError> {
         let ext = extension(path);
         if matches!(ext.as_deref(), Some("gltf" | "glb")) {
-            let file = match self.gltf.get(path) {
-                Some(file) => file.clone(),
-                None => {
-                    let file = Arc::new(GltfFile::open(path, options, fingerprint)?);
-                    self.gltf.insert(path.to_path_buf(), file.clone());
-                    file
-                }
-            };
-            return file.part(part);
+            return self.gltf(path, options, fingerprint)?.part(part);
         }
         let mesh = match ext.as_deref() {
             Some("obj") => {
@@ -135,10 +143,15 @@ impl MeshFiles {
                 obj_part(&obj, part, path)?
             }
             Some("ply") => ply_mesh(&read(path, fingerprint)?, part, path)?,
+            // The parts of a serialized file are its shapes, by index.
+            Some("serialized") => {
+                let index = crate::serialized::shape_index(part, path)?;
+                crate::serialized::parse_serialized(&read(path, fingerprint)?, index, path)?.mesh
+            }
             _ => {
                 return Err(LoadError::file(
                     path,
-                    "unknown mesh format (use .obj, .ply, .gltf or .glb)",
+                    "unknown mesh format (use .obj, .ply, .gltf, .glb or .serialized)",
                 ));
             }
         };

@@ -21,11 +21,12 @@ use std::path::{Path, PathBuf};
 
 /// Samples per pixel lucent renders each case with: 256, and 1024 for rough glass and the
 /// transmissive principled cases, whose light refracted from the small sun is the noisiest to
-/// find.
+/// find, and for the Cornell box, lit only by its small ceiling light.
 fn spp(name: &str) -> u32 {
     if name.starts_with("roughdielectric")
         || name == "principled-transmissive"
         || name == "principledthin"
+        || name == "cbox-spectral"
     {
         1024
     } else {

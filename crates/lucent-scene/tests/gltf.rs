@@ -522,12 +522,18 @@ fn materials_lights_and_camera_are_described() {
         Some(lucent_scene::desc::TextureDesc::Image(wood))
     );
     assert!(materials[1].transmission.is_some());
-    // An embedded image is not extracted: the factor alone.
+    // An image held in the file is named by the file and its index, times the factor.
+    let mut decal = lucent_scene::desc::ImageMapDesc::new("described.glb");
+    decal.encoding = Some(lucent_scene::desc::texture::Encoding::Srgb);
+    decal.gltf_image = Some(1);
     assert_eq!(
         materials[2].base_color,
-        Some(lucent_scene::desc::TextureDesc::Solid(lucent::Rgb::gray(
-            0.5
-        )))
+        Some(lucent_scene::desc::TextureDesc::Product(
+            Box::new(lucent_scene::desc::TextureDesc::Solid(lucent::Rgb::gray(
+                0.5
+            ))),
+            Box::new(lucent_scene::desc::TextureDesc::Image(decal))
+        ))
     );
     let objects: Vec<(&str, &str)> = d
         .objects
@@ -593,15 +599,14 @@ fn materials_lights_and_camera_are_described() {
     for expected in [
         "extension KHR_materials_dispersion is not supported; ignored",
         "mesh 0 primitive 3 is drawn as Lines, not triangles; skipped",
-        "node 4: camera 1 is orthographic, which lucent does not have; ignored",
-        "material 2 (`Decal`): baseColorTexture: image 1 is embedded in the file and is not extracted; the factor alone is used",
+        "node 4: camera 1 ignored: the first camera is used",
     ] {
         assert!(
             w.contains(&format!("{shown}: {expected}")),
             "missing `{expected}` in {w:#?}"
         );
     }
-    assert_eq!(w.len(), 4, "{w:#?}");
+    assert_eq!(w.len(), 3, "{w:#?}");
 }
 
 /// The error from reading `path` whole, checked to name the file and to say `cause`; the

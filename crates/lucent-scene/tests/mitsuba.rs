@@ -15,5 +15,7 @@ mod placement;
 mod plugins;
 #[path = "mitsuba/references.rs"]
 mod references;
+#[path = "mitsuba/serialized.rs"]
+mod serialized;
 #[path = "mitsuba/support.rs"]
 mod support;

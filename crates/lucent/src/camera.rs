@@ -1,5 +1,6 @@
 //! The camera: a ray from the eye through every point of the image — a pinhole, or a thin
-//! lens that focuses at one distance and blurs what is nearer or farther (depth of field).
+//! lens that focuses at one distance and blurs what is nearer or farther (depth of field) — or
+//! an orthographic projection, whose parallel rays start across the image's rectangle.
 
 use glam::Vec3;
 use lucent_accel::{Frustum, Ray};
@@ -19,6 +20,9 @@ pub enum CameraError {
     /// The field of view is not strictly between 0 and 180 degrees.
     #[error("the field of view must be between 0 and 180 degrees (exclusive), got {0}")]
     FieldOfView(f32),
+    /// An orthographic view that is not a positive, finite height.
+    #[error("an orthographic camera's view height must be positive and finite, got {0}")]
+    ViewHeight(f32),
     /// A zero width or height.
     #[error("the image must be at least 1×1 pixels, got {0}×{1}")]
     Resolution(u32, u32),
@@ -49,6 +53,9 @@ pub struct Camera {
     lens_radius: f32,
     /// Distance along the view direction of the plane in focus.
     focus_distance: f32,
+    /// Orthographic: `right` and `up` are the half width and height of the view in scene
+    /// units, and every ray runs along `forward` from the plane through the eye.
+    orthographic: bool,
 }
 
 impl Camera {
@@ -90,7 +97,28 @@ impl Camera {
             height,
             lens_radius: 0.0,
             focus_distance: 1.0,
+            orthographic: false,
         })
+    }
+
+    /// This camera made orthographic: parallel rays along the view direction, starting on the
+    /// plane through the eye, over a view `height` scene units high (as wide as the image's
+    /// aspect makes it). The lens is dropped.
+    pub fn orthographic(mut self, height: f32) -> Result<Self, CameraError> {
+        if !(height > 0.0 && height.is_finite()) {
+            return Err(CameraError::ViewHeight(height));
+        }
+        let half = height / 2.0;
+        self.right = self.right.normalize() * half * self.width as f32 / self.height as f32;
+        self.up = self.up.normalize() * half;
+        self.lens_radius = 0.0;
+        self.orthographic = true;
+        Ok(self)
+    }
+
+    /// Whether the rays are parallel (see [`Camera::orthographic`]).
+    pub fn is_orthographic(&self) -> bool {
+        self.orthographic
     }
 
     /// This camera with a thin lens of aperture radius `radius` focused at `focus_distance`
@@ -118,7 +146,7 @@ impl Camera {
     /// ray at the plane in focus. A pinhole camera ignores `u`.
     pub fn ray_through_lens(&self, x: f32, y: f32, u: glam::Vec2) -> Ray {
         let pinhole = self.ray(x, y);
-        if self.lens_radius == 0.0 {
+        if !self.has_lens() {
             return pinhole;
         }
         let along = pinhole.dir.dot(self.forward);
@@ -143,14 +171,29 @@ impl Camera {
         self.eye
     }
 
-    /// The angle one pixel subtends at the image's centre, in radians (the size of a pixel at
-    /// distance 1).
-    pub fn pixel_angle(&self) -> f32 {
-        2.0 * self.up.length() / self.height as f32
+    /// The size of a pixel, at the image's centre, on a plane facing the camera at
+    /// `distance`: the angle it subtends times the distance, or (orthographic) its width.
+    pub fn pixel_size_at(&self, distance: f32) -> f32 {
+        let size = 2.0 * self.up.length() / self.height as f32;
+        if self.orthographic {
+            size
+        } else {
+            size * distance
+        }
     }
 
-    /// The ray from the eye through image point `(x, y)` (see the type's docs), unit direction.
+    /// The ray from the eye through image point `(x, y)` (see the type's docs), unit direction;
+    /// for an orthographic camera, the ray along the view from that point of the view's
+    /// rectangle.
     pub fn ray(&self, x: f32, y: f32) -> Ray {
+        if self.orthographic {
+            let ndc_x = 2.0 * x / self.width as f32 - 1.0;
+            let ndc_y = 1.0 - 2.0 * y / self.height as f32;
+            return Ray::new(
+                self.eye + ndc_x * self.right + ndc_y * self.up,
+                self.forward,
+            );
+        }
         Ray::new(self.eye, self.direction(x, y).normalize())
     }
 
@@ -169,6 +212,22 @@ impl Camera {
     /// filter over this footprint. Zero vectors where the plane is seen edge-on or the point is
     /// behind the camera.
     pub fn footprint(&self, p: Vec3, n: Vec3) -> [Vec3; 2] {
+        if self.orthographic {
+            // The neighbouring rays are parallel, one pixel across: moved onto the plane.
+            let steps = [
+                self.right * (2.0 / self.width as f32),
+                self.up * (-2.0 / self.height as f32),
+            ];
+            let denom = n.dot(self.forward);
+            return steps.map(|step| {
+                let moved = step - self.forward * (n.dot(step) / denom);
+                if denom.abs() > 1e-6 && moved.is_finite() {
+                    moved
+                } else {
+                    Vec3::ZERO
+                }
+            });
+        }
         let to_p = p - self.eye;
         let depth = to_p.dot(self.forward);
         if depth.is_nan() || depth <= 0.0 {
@@ -197,12 +256,18 @@ impl Camera {
 
     /// True for a pinhole: every ray starts at the eye.
     pub fn is_pinhole(&self) -> bool {
-        self.lens_radius == 0.0
+        self.lens_radius == 0.0 && !self.orthographic
+    }
+
+    /// True for a thin lens: rays start across its aperture, drawn by a lens sample.
+    pub fn has_lens(&self) -> bool {
+        self.lens_radius > 0.0
     }
 
     /// The beam of the pinhole's rays through the image rectangle `[x0, x1] × [y0, y1]` (pixel
-    /// coordinates, which may reach outside the image): `None` for a thin lens, whose rays do
-    /// not share an origin, or for a rectangle too thin to span a cone.
+    /// coordinates, which may reach outside the image): `None` for a thin lens or an
+    /// orthographic camera, whose rays do not share an origin, or for a rectangle too thin to
+    /// span a cone.
     pub fn frustum(&self, (x0, y0): (f32, f32), (x1, y1): (f32, f32)) -> Option<Frustum> {
         if !self.is_pinhole() {
             return None;
@@ -322,6 +387,35 @@ mod tests {
         let c = camera(4, 2);
         let right = c.ray(4.0, 1.0).dir;
         assert!((right - Vec3::new(2.0, 0.0, -1.0).normalize()).length() < 1e-6);
+    }
+
+    #[test]
+    fn orthographic_rays_are_parallel_across_the_view() {
+        // A view 4 units high on a 2:1 image: 8 wide.
+        let c = camera(4, 2).orthographic(4.0).unwrap();
+        assert!(
+            c.is_orthographic() && !c.is_pinhole() && c.frustum((0.0, 0.0), (1.0, 1.0)).is_none()
+        );
+        let centre = c.ray(2.0, 1.0);
+        assert_eq!(centre.origin, Vec3::new(0.0, 0.0, 5.0));
+        let corner = c.ray(0.0, 0.0);
+        assert!(
+            (corner.origin - Vec3::new(-4.0, 2.0, 5.0)).length() < 1e-6,
+            "{}",
+            corner.origin
+        );
+        assert_eq!(corner.dir, centre.dir);
+        assert!((centre.dir - -Vec3::Z).length() < 1e-6);
+        // A pixel is 2 units at any distance; on a floor seen at 45° it stretches by √2.
+        assert!((c.pixel_size_at(1.0) - 2.0).abs() < 1e-6);
+        assert!((c.pixel_size_at(100.0) - 2.0).abs() < 1e-6);
+        let [dx, dy] = c.footprint(Vec3::ZERO, Vec3::new(0.0, 1.0, 1.0).normalize());
+        assert!((dx - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-5, "{dx}");
+        assert!((dy.length() - 2.0 * 2f32.sqrt()).abs() < 1e-4, "{dy}");
+        assert_eq!(
+            camera(4, 2).orthographic(0.0),
+            Err(CameraError::ViewHeight(0.0))
+        );
     }
 
     #[test]

@@ -751,9 +751,10 @@ fn pixel_and_lens(
 ) -> (glam::Vec2, glam::Vec2) {
     if let Integrator::Path(_) = settings.integrator {
         let in_pixel = sampler.next_2d();
-        // A pinhole has no use for a lens position: its dimensions are spent, not drawn.
+        // A camera without a lens has no use for a lens position: its dimensions are spent,
+        // not drawn.
         let mut lens = sampler.defer(2);
-        if scene.camera.is_pinhole() {
+        if !scene.camera.has_lens() {
             return (in_pixel, glam::Vec2::ZERO);
         }
         return (in_pixel, lens.next_2d());

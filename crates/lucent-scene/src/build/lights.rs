@@ -41,12 +41,13 @@ pub fn add_lights(
             ("cutoff", span(&d.cutoff)),
             ("cutoff_start", span(&d.cutoff_start)),
             ("file", span(&d.file)),
+            ("rotation", span(&d.rotation)),
         ];
         let takes: &[&str] = match d.kind {
             LightKind::Point => &["position", "falloff"],
             LightKind::Spot => &["position", "falloff", "direction", "cutoff", "cutoff_start"],
             LightKind::Directional => &["direction"],
-            LightKind::Environment => &["file"],
+            LightKind::Environment => &["file", "rotation"],
         };
         let others: Vec<_> = keys
             .into_iter()
@@ -129,6 +130,11 @@ pub fn add_lights(
                         let id =
                             ctx.image(file.get_ref(), file.span(), intensity, Encoding::Srgb)?;
                         ctx.builder.environment(Some(id));
+                        if let Some(r) = &d.rotation {
+                            let to_image = environment_rotation(r.get_ref().0)
+                                .ok_or_else(|| ctx.source.error(r.span(), "an environment's `rotation` must be a rotation: orthonormal columns, no mirror"))?;
+                            ctx.builder.environment_rotation(to_image);
+                        }
                         ctx.builder
                             .stored_image(id)
                             .map_or(Rgb::BLACK, |i| i.latlong_mean())
@@ -193,4 +199,13 @@ pub fn area_lights_as_points(
             ctx.source.path.display(),
         ));
     }
+}
+
+/// The rotation taking world directions to an environment image's frame, from the rotation
+/// `m` (its linear part) places the image by; `None` unless that part is a rotation (to within
+/// single-precision rounding of its entries).
+fn environment_rotation(m: glam::Mat4) -> Option<glam::Mat3> {
+    let r = glam::Mat3::from_mat4(m);
+    let orthonormal = (r.transpose() * r).abs_diff_eq(glam::Mat3::IDENTITY, 1e-4);
+    (orthonormal && r.determinant() > 0.0).then(|| r.transpose())
 }

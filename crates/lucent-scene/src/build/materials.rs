@@ -35,6 +35,7 @@ const COMMON: &[&str] = &[
     "two_sided",
     "back",
     "vertex_colors",
+    "cull_back",
 ];
 
 /// The keys of each kind besides [`COMMON`].
@@ -176,6 +177,7 @@ impl<'d> Materials<'d> {
         }
         material.two_sided = d.two_sided.unwrap_or(true);
         material.vertex_colors = d.vertex_colors.unwrap_or(true);
+        material.cull_back = d.cull_back.unwrap_or(false);
         Ok((material, approx))
     }
 

@@ -86,7 +86,7 @@ pub struct Context<'a> {
     pub builder: SceneBuilder,
     /// Mesh files parsed so far.
     pub mesh_files: crate::mesh_file::MeshFiles,
-    images: HashMap<(PathBuf, [u32; 3], Encoding), u32>,
+    images: HashMap<(PathBuf, Option<u32>, [u32; 3], Encoding), u32>,
     /// Rough coats already integrated, by (distribution, α, η) bits.
     pub coats: HashMap<(u8, u32, u32), std::sync::Arc<lucent::bsdf::RoughCoat>>,
     sheen_albedo: Option<std::sync::Arc<lucent::bsdf::SheenAlbedo>>,
@@ -116,6 +116,19 @@ impl Context<'_> {
         scale: Rgb,
         encoding: Encoding,
     ) -> Result<u32, LoadError> {
+        self.image_in(name, None, span, scale, encoding)
+    }
+
+    /// [`Context::image`] of the file `name`, or of image `gltf_image` held inside it (a glTF
+    /// or GLB file).
+    pub fn image_in(
+        &mut self,
+        name: &str,
+        gltf_image: Option<u32>,
+        span: Range<usize>,
+        scale: Rgb,
+        encoding: Encoding,
+    ) -> Result<u32, LoadError> {
         let path = self.path(name, span.clone())?;
         if let Err(why) = crate::input::refused(&path) {
             return Err(self
@@ -124,13 +137,35 @@ impl Context<'_> {
         }
         let key = (
             std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone()),
+            gltf_image,
             [scale.r, scale.g, scale.b].map(f32::to_bits),
             encoding,
         );
         if let Some(&id) = self.images.get(&key) {
             return Ok(id);
         }
-        let mut image = crate::images::read_image(&path, encoding, &mut self.inputs)?;
+        let mut image = match gltf_image {
+            None => crate::images::read_image(&path, encoding, &mut self.inputs)?,
+            Some(index) => {
+                if !matches!(
+                    crate::mesh_file::extension(&path).as_deref(),
+                    Some("gltf" | "glb")
+                ) {
+                    return Err(self.source.error(
+                        span,
+                        format!(
+                            "`gltf_image` reads an image inside a glTF or GLB file; `{name}` is not one"
+                        ),
+                    ));
+                }
+                let file = self
+                    .mesh_files
+                    .gltf(&path, self.options, &mut self.inputs)?;
+                let bytes = file.embedded_image(index)?;
+                crate::images::decode_image(&bytes, encoding)
+                    .map_err(|e| LoadError::file(&path, format!("image {index}: {e}")))?
+            }
+        };
         if scale != Rgb::WHITE {
             image = image.scaled(scale);
         }
@@ -177,7 +212,17 @@ pub fn build_with_files(
                 c.with_lens(a.0, focus)
             }
         })
+        .and_then(|c| match cam.orthographic {
+            None => Ok(c),
+            Some(h) => c.orthographic(h.0),
+        })
         .map_err(|e| source.error(desc.camera.span(), e.to_string()))?;
+    if cam.orthographic.is_some() && cam.aperture.is_some() {
+        return Err(source.error(
+            desc.camera.span(),
+            "an orthographic camera has no lens: `aperture` cannot go with `orthographic`",
+        ));
+    }
     if cam.aperture.is_some_and(|a| a.0 > 0.0) && settings.sampling != Sampling::Uniform {
         return Err(source.error(
             desc.camera.span(),

@@ -66,7 +66,7 @@ impl Context<'_> {
             Slot::Color => Encoding::Srgb,
             Slot::Data => Encoding::Linear,
         });
-        let image = self.image(&i.file, span.clone(), Rgb::WHITE, encoding)?;
+        let image = self.image_in(&i.file, i.gltf_image, span.clone(), Rgb::WHITE, encoding)?;
         let channel = i.channel.unwrap_or(Channel::Rgb);
         if channel == Channel::A
             && !self

@@ -4,7 +4,8 @@ use super::{Finite, MotionDesc, Vector};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
-/// `[camera]`: a pinhole camera, or a thin lens when `aperture` is given.
+/// `[camera]`: a pinhole camera, a thin lens when `aperture` is given, or an orthographic
+/// projection when `orthographic` is.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
@@ -25,6 +26,11 @@ pub struct CameraDesc {
     /// distance to `look_at`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub focus_distance: Option<Finite>,
+    /// An orthographic projection instead of a perspective one: the height of the view, in
+    /// scene units (its width follows the image's aspect). Parallel rays along the view
+    /// direction start on the plane through `eye`; `fov` is not used.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orthographic: Option<Finite>,
     /// How the camera moves (see [`MotionDesc`]): the eye as a point, the view with it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motion: Option<Spanned<MotionDesc>>,

@@ -1,6 +1,6 @@
 //! `[[light]]` tables.
 
-use super::{Color, Finite, Vector};
+use super::{Color, Finite, Matrix, Vector};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -73,6 +73,10 @@ pub struct LightDesc {
     /// +y is up, the image's centre column looks along −z.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<Spanned<String>>,
+    /// Environment: its orientation, a rotation (as a 4×4 matrix, row by row, whose
+    /// translation is ignored): the image's +y and −z are turned to where it takes them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation: Option<Spanned<Matrix>>,
 }
 
 impl LightDesc {
@@ -87,6 +91,7 @@ impl LightDesc {
             cutoff: None,
             cutoff_start: None,
             file: None,
+            rotation: None,
         }
     }
 }

@@ -259,6 +259,10 @@ pub struct MaterialDesc {
     /// Whether mesh vertex colours multiply the diffuse colour (default true).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vertex_colors: Option<bool>,
+    /// Whether the back side is not there at all: rays meeting it from behind pass through
+    /// (default false; glTF's single-sided materials).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cull_back: Option<bool>,
 }
 
 impl MaterialDesc {
@@ -321,6 +325,7 @@ impl MaterialDesc {
             two_sided: None,
             back: None,
             vertex_colors: None,
+            cull_back: None,
         }
     }
 

@@ -21,7 +21,8 @@
 //! `"bilinear"`, `"trilinear"` — MIP-mapped, `"anisotropic"` — MIP-mapped with up to 8 lookups
 //! along a stretched footprint, the default) and a placement of its texture
 //! coordinates, `uv' = offset + R(rotation)·(scale ∘ uv)` (`scale`, `offset` as `[u, v]`,
-//! `rotation` in degrees). A uv checkerboard takes the same placement.
+//! `rotation` in degrees). A uv checkerboard takes the same placement. `gltf_image = N` reads
+//! image `N` held inside the glTF or GLB file `image` names (a buffer view or a `data:` URI).
 
 use super::{Color, Finite};
 use lucent::Rgb;
@@ -84,6 +85,9 @@ pub struct ImageMapDesc {
     pub filter: Option<Filter>,
     /// Placement of the coordinates.
     pub placement: Placement,
+    /// The index of an image held inside `file`, a glTF or GLB file (in a buffer view or a
+    /// `data:` URI), rather than `file` itself.
+    pub gltf_image: Option<u32>,
 }
 
 impl ImageMapDesc {
@@ -96,6 +100,7 @@ impl ImageMapDesc {
             wrap: None,
             filter: None,
             placement: Placement::default(),
+            gltf_image: None,
         }
     }
 }
@@ -397,9 +402,10 @@ impl<'de> Visitor<'de> for TextureVisitor {
                     placement.offset = Some([u.0, v.0]);
                 }
                 "rotation" => placement.rotation = Some(map.next_value::<Finite>()?.0),
+                "gltf_image" => image.gltf_image = Some(map.next_value()?),
                 other => {
                     return Err(de::Error::custom(format!(
-                        "unknown texture key `{other}` (kinds: {}; an image also takes encoding, channel, wrap, filter, scale, offset, rotation)",
+                        "unknown texture key `{other}` (kinds: {}; an image also takes encoding, channel, wrap, filter, scale, offset, rotation, gltf_image)",
                         KINDS.join(", ")
                     )));
                 }
@@ -414,11 +420,12 @@ impl<'de> Visitor<'de> for TextureVisitor {
         let image_only = image.encoding.is_some()
             || image.channel.is_some()
             || image.wrap.is_some()
-            || image.filter.is_some();
+            || image.filter.is_some()
+            || image.gltf_image.is_some();
         let placed = !placement.is_default();
         if image_only && kind != "image" {
             return Err(de::Error::custom(format!(
-                "encoding, channel, wrap and filter are an image's keys, not a {kind}'s"
+                "encoding, channel, wrap, filter and gltf_image are an image's keys, not a {kind}'s"
             )));
         }
         if placed && !matches!(kind, "image" | "checkerboard") {
@@ -543,6 +550,9 @@ impl Serialize for TextureDesc {
             TextureDesc::Image(i) => {
                 let mut m = s.serialize_map(None)?;
                 m.serialize_entry("image", &i.file)?;
+                if let Some(index) = i.gltf_image {
+                    m.serialize_entry("gltf_image", &index)?;
+                }
                 if let Some(e) = i.encoding {
                     m.serialize_entry("encoding", &e)?;
                 }
@@ -608,6 +618,7 @@ mod tests {
         for text in [
             "t = 0.5",
             "t = [0.1, 0.2, 0.3]",
+            "t = { image = \"m.glb\", gltf_image = 3, channel = \"b\" }",
             "t = { image = \"a.png\", encoding = \"linear\", channel = \"g\", wrap = [\"clamp\", \"mirror\"], filter = \"nearest\", scale = [4, 2], offset = [0.5, 0], rotation = 30 }",
             "t = { checker = { even = 1, odd = 0, size = 2 } }",
             "t = { checkerboard = { even = 0.4, odd = 0.2 }, scale = [8, 8] }",

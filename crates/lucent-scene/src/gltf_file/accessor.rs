@@ -21,7 +21,7 @@ pub(super) const MAX_ELEMENTS: usize = 1 << 28;
 pub(super) const MAX_ZERO_FILLED: usize = 1 << 20;
 
 /// The bytes of `view`, checked against the buffers' real lengths.
-fn view_bytes<'b>(buffers: &'b [Vec<u8>], view: &View) -> Result<&'b [u8], String> {
+pub(super) fn view_bytes<'b>(buffers: &'b [Vec<u8>], view: &View) -> Result<&'b [u8], String> {
     let b = view.buffer().index();
     let data = buffers
         .get(b)

@@ -14,8 +14,12 @@
 //! | `KHR_materials_iridescence`: `iridescenceFactor` × red of `iridescenceTexture`, `iridescenceIor`, thickness `mix(iridescenceThicknessMinimum, iridescenceThicknessMaximum, green of iridescenceThicknessTexture)` (the maximum without the texture) | `iridescence`, `iridescence_ior`, `iridescence_thickness` (a `mix` of the two numbers by the texture) |
 //! | a sampler's `wrapS`/`wrapT`, `magFilter` `NEAREST`; `KHR_texture_transform` | an image's `wrap`, `filter`; its `scale`, `rotation`, `offset` |
 //!
-//! Not read (each a note naming the material): images inside the glTF or GLB file, texture
-//! coordinates other than `TEXCOORD_0`, `KHR_materials_volume`'s attenuation,
+//! Images held inside the glTF or GLB file (buffer views, `data:` URIs) are named by the file
+//! and their index (`gltf_image`), and decoded by the build.
+//!
+//! A primitive keeps the coordinate set most of its material's textures read ([`uv_set`]).
+//!
+//! Not read (each a note naming the material): a texture reading another coordinate set, `KHR_materials_volume`'s attenuation,
 //! `KHR_materials_anisotropy`'s direction texture, unlit and specular-glossiness materials.
 //! `occlusionTexture` is a rasteriser's stand-in for the shadowing a path tracer computes, and
 //! is left out on purpose.
@@ -53,6 +57,11 @@ pub(super) struct Images<'a> {
     pub root: &'a gltf::json::Root,
     /// The glTF file's folder.
     pub base_dir: &'a Path,
+    /// The glTF file's name in that folder: images held inside it are named by it.
+    pub file_name: &'a str,
+    /// The file with its buffers, where the images held inside it are read (`None` in tests
+    /// of the description alone).
+    pub asset: Option<&'a super::Asset>,
     /// `--sandbox` or not.
     pub options: &'a LoadOptions,
 }
@@ -115,6 +124,8 @@ struct Reader<'a, 'b> {
     images: &'b Images<'a>,
     label: String,
     notes: Vec<String>,
+    /// The coordinate set the material's primitives keep ([`uv_set`]).
+    uv_set: u32,
 }
 
 impl Reader<'_, '_> {
@@ -142,20 +153,22 @@ impl Reader<'_, '_> {
         let index = texture.source.value();
         // The JSON is read directly: the crate's `Image::source` panics on an image that has
         // neither a URI nor a buffer view with a MIME type, which validation lets through.
-        let uri = root
-            .images
-            .get(index)
-            .and_then(|i| i.uri.as_deref())
-            .filter(|uri| !uri.starts_with("data:"));
-        let Some(uri) = uri else {
+        let Some(json) = root.images.get(index) else {
             self.note(format!(
-                "{what}: image {index} is embedded in the file and is not extracted; the factor alone is used"
+                "{what}: image {index} does not exist; the factor alone is used"
             ));
             return Ok(None);
         };
-        let file = file_name_of_uri(uri).map_err(|e| format!("image {index}: {e}"))?;
-        resolve(self.images.base_dir, &file, self.images.options)
-            .map_err(|e| format!("image {index}: {e}"))?;
+        // An image in a buffer view or a data: URI is read from the glTF file itself.
+        let (file, gltf_image) = match json.uri.as_deref() {
+            Some(uri) if !uri.starts_with("data:") => {
+                let file = file_name_of_uri(uri).map_err(|e| format!("image {index}: {e}"))?;
+                resolve(self.images.base_dir, &file, self.images.options)
+                    .map_err(|e| format!("image {index}: {e}"))?;
+                (file, None)
+            }
+            _ => (self.images.file_name.to_string(), Some(index as u32)),
+        };
         let mut tex_coord = slot.tex_coord;
         let mut placement = Placement::default();
         if let Some(t) = &slot.transform {
@@ -174,12 +187,14 @@ impl Reader<'_, '_> {
                 tex_coord = k as u32;
             }
         }
-        if tex_coord != 0 {
+        if tex_coord != self.uv_set {
+            let set = self.uv_set;
             self.note(format!(
-                "{what} uses TEXCOORD_{tex_coord}; TEXCOORD_0 is used"
+                "{what} uses TEXCOORD_{tex_coord}; TEXCOORD_{set}, which the material's other textures use, is used"
             ));
         }
         let mut image = ImageMapDesc::new(file);
+        image.gltf_image = gltf_image;
         image.encoding = Some(encoding);
         if channel != Channel::Rgb {
             image.channel = Some(channel);
@@ -264,6 +279,53 @@ fn unless_default(t: TextureDesc, default: f32) -> Option<Spanned<TextureDesc>> 
     (t != TextureDesc::gray(default)).then(|| spanned(t))
 }
 
+/// The texture coordinate set (`TEXCOORD_n`) a primitive of material `index` keeps as its
+/// texture coordinates: the one most of the material's textures read (a `KHR_texture_transform`
+/// `texCoord` counted for its texture), the lower on a tie; 0 without textures. A mesh carries
+/// one set, so textures reading another are noted by [`describe`].
+pub(super) fn uv_set(root: &gltf::json::Root, index: Option<usize>) -> u32 {
+    let Some(json) = index
+        .and_then(|i| root.materials.get(i))
+        .and_then(|m| serde_json::to_value(m).ok())
+    else {
+        return 0;
+    };
+    let mut counts: Vec<(u32, usize)> = Vec::new();
+    texture_sets(
+        &json,
+        &mut |set| match counts.iter_mut().find(|(s, _)| *s == set) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((set, 1)),
+        },
+    );
+    counts
+        .into_iter()
+        .max_by_key(|&(set, n)| (n, std::cmp::Reverse(set)))
+        .map_or(0, |(set, _)| set)
+}
+
+/// Calls `f` with the coordinate set of every texture slot (`...Texture` objects with an
+/// `index`) in a material's JSON, extensions included, `occlusionTexture` (not read) excluded.
+fn texture_sets(v: &Value, f: &mut impl FnMut(u32)) {
+    let Some(map) = v.as_object() else {
+        return;
+    };
+    for (key, value) in map {
+        if key.ends_with("Texture") && key != "occlusionTexture" && value.get("index").is_some() {
+            let set = value
+                .get("extensions")
+                .and_then(|e| e.get("KHR_texture_transform"))
+                .and_then(|t| t.get("texCoord"))
+                .or_else(|| value.get("texCoord"))
+                .and_then(Value::as_u64)
+                .unwrap_or(0);
+            f(u32::try_from(set).unwrap_or(u32::MAX));
+        } else {
+            texture_sets(value, f);
+        }
+    }
+}
+
 /// The description of material `m` named `name`, and notes on what it does not render as
 /// written (sentences naming the material). An error when an image URI is refused.
 pub(super) fn describe(
@@ -280,10 +342,16 @@ pub(super) fn describe(
         images,
         label,
         notes: Vec::new(),
+        uv_set: uv_set(images.root, m.index()),
     };
     let mut d = MaterialDesc::named(name);
     d.kind = Some(spanned(MaterialKind::Pbr));
     d.two_sided = Some(m.double_sided());
+    // A single-sided material's back faces are culled (glTF 2.0 §3.9.5), unless light goes
+    // through it: a transmitting surface is met from behind by the light inside it.
+    if !m.double_sided() && m.transmission().is_none() && m.volume().is_none() {
+        d.cull_back = Some(true);
+    }
     let pbr = m.pbr_metallic_roughness();
     let [br, bg, bb, alpha] = pbr.base_color_factor();
     let base_slot = pbr.base_color_texture().map(|i| Slot::of_info(&i));
@@ -386,26 +454,41 @@ impl Reader<'_, '_> {
     /// Whether the image of `slot` is a file with an alpha channel (its header read).
     fn has_alpha(&self, slot: &Slot) -> bool {
         let root = self.images.root;
-        let Some(uri) = root
-            .textures
-            .get(slot.texture)
-            .and_then(|t| root.images.get(t.source.value()))
-            .and_then(|i| i.uri.as_deref())
-        else {
+        let Some(index) = root.textures.get(slot.texture).map(|t| t.source.value()) else {
             return false;
         };
-        let Ok(file) = file_name_of_uri(uri) else {
+        let Some(image) = root.images.get(index) else {
             return false;
         };
-        let Ok(path) = resolve(self.images.base_dir, &file, self.images.options) else {
-            return false;
-        };
-        crate::input::open(&path)
-            .map(|(file, _)| image::ImageReader::new(std::io::BufReader::new(file)))
-            .and_then(|r| r.with_guessed_format())
-            .ok()
-            .and_then(|r| r.into_decoder().ok())
-            .is_some_and(|dec| image::ImageDecoder::color_type(&dec).has_alpha())
+        fn header_has_alpha<R: std::io::BufRead + std::io::Seek>(
+            r: std::io::Result<image::ImageReader<R>>,
+        ) -> bool {
+            r.and_then(|r| r.with_guessed_format())
+                .ok()
+                .and_then(|r| r.into_decoder().ok())
+                .is_some_and(|dec| image::ImageDecoder::color_type(&dec).has_alpha())
+        }
+        match image.uri.as_deref() {
+            Some(uri) if !uri.starts_with("data:") => {
+                let Ok(file) = file_name_of_uri(uri) else {
+                    return false;
+                };
+                let Ok(path) = resolve(self.images.base_dir, &file, self.images.options) else {
+                    return false;
+                };
+                header_has_alpha(
+                    crate::input::open(&path)
+                        .map(|(file, _)| image::ImageReader::new(std::io::BufReader::new(file))),
+                )
+            }
+            _ => self
+                .images
+                .asset
+                .and_then(|a| a.embedded_image(index).ok())
+                .is_some_and(|bytes| {
+                    header_has_alpha(Ok(image::ImageReader::new(std::io::Cursor::new(bytes))))
+                }),
+        }
     }
 }
 

@@ -16,8 +16,10 @@ pub(super) enum Decoded {
     Skipped(String),
 }
 
-/// Reads primitive `prim` of mesh `mesh`. Errors name the mesh and primitive.
+/// Reads primitive `prim` of mesh `mesh`, with the texture coordinates of its material's set
+/// (`TEXCOORD_n`, see `material::uv_set`). Errors name the mesh and primitive.
 pub(super) fn decode(
+    root: &gltf::json::Root,
     buffers: &[Vec<u8>],
     mesh: usize,
     prim: &gltf::Primitive,
@@ -86,7 +88,8 @@ pub(super) fn decode(
         }
     };
     let normals = optional(Semantic::Normals, &[3], "normals");
-    let uvs = optional(Semantic::TexCoords(0), &[2], "texture coordinates");
+    let set = super::material::uv_set(root, prim.material().index());
+    let uvs = optional(Semantic::TexCoords(set), &[2], "texture coordinates");
     let colors = optional(Semantic::Colors(0), &[3, 4], "colours");
     let tangents = optional(Semantic::Tangents, &[4], "tangents");
     if let Some((v, _)) = normals {

@@ -204,16 +204,29 @@ fn materials_become_gltf_pbr_with_every_texture_and_layer() {
         m[3].0.opacity.as_ref().map(|o| o.get_ref().clone()),
         Some(TextureDesc::gray(0.0))
     );
-    // BLEND: the alpha; the embedded image is a note, its factor kept.
+    // BLEND: the alpha (the image in a buffer view, here without bytes to read, counts as
+    // having none). The image is named by the glTF file and its index.
     let (veil, notes) = &m[4];
     assert_eq!(
         veil.opacity.as_ref().map(|o| o.get_ref().clone()),
         Some(TextureDesc::gray(0.4))
     );
-    assert_eq!(veil.base_color, None);
-    assert!(
-        notes.iter().any(|n| n.contains("image 4 is embedded")),
-        "{notes:?}"
+    let base = image(
+        veil.base_color
+            .as_ref()
+            .expect("the embedded image is read"),
+    );
+    assert_eq!(
+        (base.file.as_str(), base.gltf_image),
+        ("test.gltf", Some(4))
+    );
+    assert!(notes.is_empty(), "{notes:?}");
+
+    // Single-sided materials cull their backs, except where light goes through them.
+    let culled: Vec<Option<bool>> = m.iter().map(|(d, _)| d.cull_back).collect();
+    assert_eq!(
+        culled,
+        [None, None, Some(true), Some(true), Some(true), Some(true)]
     );
 
     // glTF's defaults: a white rough metal.
@@ -322,7 +335,8 @@ fn a_perspective_camera_looks_down_its_nodes_minus_z() {
     let world = Mat4::from_translation(Vec3::new(0.0, 1.0, 10.0))
         * Mat4::from_rotation_y(FRAC_PI_2)
         * Mat4::from_scale(Vec3::splat(3.0));
-    let c = perspective(&p, world).unwrap();
+    let (c, aspect) = camera_of(&camera.projection(), world).unwrap();
+    assert_eq!((aspect, c.orthographic), (p.aspect_ratio(), None));
     assert_eq!(c.eye.0, Vec3::new(0.0, 1.0, 10.0));
     // −z turned by 90° about y is −x.
     assert!(c.look_at.0.abs_diff_eq(Vec3::new(-1.0, 1.0, 10.0), 1e-6));
@@ -332,7 +346,63 @@ fn a_perspective_camera_looks_down_its_nodes_minus_z() {
     assert_eq!(image_width(0.0), None);
     assert_eq!(image_width(f32::INFINITY), None);
     let flat = Mat4::from_scale(Vec3::new(1.0, 1.0, 0.0));
-    assert!(perspective(&p, flat).unwrap_err().contains("flattens"));
+    assert!(
+        camera_of(&camera.projection(), flat)
+            .unwrap_err()
+            .contains("flattens")
+    );
+
+    // An orthographic camera: a view 2·ymag high, of aspect xmag / ymag.
+    let doc = parse_document(
+        br#"{"asset": {"version": "2.0"}, "cameras": [{"type": "orthographic",
+            "orthographic": {"xmag": 3, "ymag": 2, "znear": 0.1, "zfar": 100}}]}"#,
+        Path::new("t.gltf"),
+        true,
+    )
+    .unwrap();
+    let ortho = doc.cameras().next().unwrap();
+    let (c, aspect) = camera_of(&ortho.projection(), world).unwrap();
+    assert_eq!(
+        (c.orthographic.map(|h| h.0), aspect),
+        (Some(4.0), Some(1.5))
+    );
+    assert!(c.look_at.0.abs_diff_eq(Vec3::new(-1.0, 1.0, 10.0), 1e-6));
+}
+
+#[test]
+fn primitives_keep_the_coordinate_set_their_textures_read() {
+    let doc = parse_document(
+        br#"{"asset": {"version": "2.0"},
+            "images": [{"uri": "a.png"}], "textures": [{"source": 0}],
+            "materials": [
+              {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1},
+                                        "metallicRoughnessTexture": {"index": 0, "texCoord": 1}},
+               "normalTexture": {"index": 0},
+               "occlusionTexture": {"index": 0, "texCoord": 0}},
+              {"emissiveTexture": {"index": 0, "texCoord": 2,
+                 "extensions": {"KHR_texture_transform": {"texCoord": 0}}}},
+              {}
+            ]}"#,
+        Path::new("t.gltf"),
+        true,
+    )
+    .unwrap();
+    let root = doc.as_json();
+    // Two textures read set 1, one set 0 (occlusion is not read): set 1. A transform's
+    // texCoord replaces the texture's. No textures: set 0.
+    assert_eq!(material::uv_set(root, Some(0)), 1);
+    assert_eq!(material::uv_set(root, Some(1)), 0);
+    assert_eq!(material::uv_set(root, Some(2)), 0);
+    assert_eq!(material::uv_set(root, None), 0);
+    let m = described_doc(&doc);
+    assert!(
+        m[0].1
+            .iter()
+            .any(|n| n.contains("normalTexture uses TEXCOORD_0; TEXCOORD_1")),
+        "{:?}",
+        m[0].1
+    );
+    assert!(m[1].1.is_empty(), "{:?}", m[1].1);
 }
 
 #[test]

@@ -6,14 +6,13 @@
 //! | `spot` (`to_world`: at M·0, shining along M·+z; `intensity`, `cutoff_angle` default 20°, `beam_width` default ¾ of it) | spot light (`cutoff`, `cutoff_start`), quadratic falloff |
 //! | `directional` (`direction` or `to_world`'s +z, `irradiance`) | directional light |
 //! | `constant` (`radiance`) | environment light, `intensity` |
-//! | `envmap` (`filename`, `scale`) | environment light, `file`, `intensity = scale` |
+//! | `envmap` (`filename`, `scale`, `to_world`) | environment light, `file`, `intensity = scale`, `rotation` = `to_world`'s rotation after a half turn about +y (Mitsuba's image frame faces its centre towards +z, lucent's towards −z) |
 //!
 //! `area` emitters belong inside shapes (see `shape.rs`).
 
 use super::Convert;
-use super::transform;
 use super::xml::Element;
-use crate::desc::{Color, FalloffName, Finite, LightDesc, LightKind, Vector};
+use crate::desc::{Color, FalloffName, Finite, LightDesc, LightKind, Matrix, Vector};
 use crate::error::LoadError;
 use glam::{DMat4, DVec3};
 use lucent::Rgb;
@@ -60,7 +59,7 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<LightDesc, Load
                 (None, _) => m.transform_point3(DVec3::ZERO),
             };
             l.position = Some(vector(position, el, "position")?);
-            l.intensity = color(p.color_or("intensity", 1.0)?);
+            l.intensity = color(p.emitted_color_or("intensity", 1.0)?);
             l.falloff = Some(Spanned::new(0..0, FalloffName::Quadratic));
             l
         }
@@ -74,7 +73,7 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<LightDesc, Load
                     .error("the spot emitter's to_world flattens its direction"));
             }
             l.direction = Some(vector(direction, el, "direction")?);
-            l.intensity = color(p.color_or("intensity", 1.0)?);
+            l.intensity = color(p.emitted_color_or("intensity", 1.0)?);
             let cutoff = p.float_or("cutoff_angle", 20.0)?;
             if !(cutoff > 0.0 && cutoff <= 90.0) {
                 return Err(el.loc.error(format!(
@@ -103,12 +102,12 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<LightDesc, Load
                 return Err(el.loc.error("the directional emitter's direction is zero"));
             }
             l.direction = Some(vector(direction, el, "direction")?);
-            l.intensity = color(p.color_or("irradiance", 1.0)?);
+            l.intensity = color(p.emitted_color_or("irradiance", 1.0)?);
             l
         }
         "constant" => {
             let mut l = LightDesc::new(LightKind::Environment);
-            l.intensity = color(p.color_or("radiance", 1.0)?);
+            l.intensity = color(p.emitted_color_or("radiance", 1.0)?);
             l
         }
         "envmap" => {
@@ -120,16 +119,27 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<LightDesc, Load
                 return Err(el.loc.error("an envmap's scale must not be negative"));
             }
             l.intensity = color(Rgb::gray(scale as f32));
-            match to_world {
-                Some((m, loc)) if !transform::is_identity(&m) => p.warn(
-                    loc,
-                    "the envmap's to_world is not read: lucent's environment has +y up and the image's centre towards -z",
-                ),
-                _ => p.warn(
-                    &el.loc,
-                    "Mitsuba's envmap shows the image's centre towards +z, lucent's towards -z: the environment appears turned 180° about +y",
-                ),
+            // Mitsuba's image frame faces its centre towards +z, lucent's towards −z: a half
+            // turn about +y, then to_world's rotation.
+            let turned = m * DMat4::from_rotation_y(std::f64::consts::PI);
+            let linear = glam::DMat3::from_mat4(turned);
+            let unit = glam::DMat3::from_cols(
+                linear.x_axis.normalize_or_zero(),
+                linear.y_axis.normalize_or_zero(),
+                linear.z_axis.normalize_or_zero(),
+            );
+            let rotation = (unit.transpose() * unit).abs_diff_eq(glam::DMat3::IDENTITY, 1e-6)
+                && unit.determinant() > 0.0;
+            if !rotation {
+                let at = to_world.map_or(&el.loc, |(_, loc)| loc);
+                return Err(at.error(
+                    "an envmap's to_world must rotate (and may scale evenly): lucent cannot shear or mirror an environment",
+                ));
             }
+            l.rotation = Some(Spanned::new(
+                0..0,
+                Matrix(glam::DMat4::from_mat3(unit).as_mat4()),
+            ));
             l
         }
         "area" => {

@@ -44,9 +44,10 @@
 //! from several files.
 //!
 //! Not read: participating media, textures other than `bitmap`, `checkerboard` and
-//! `mesh_attribute`, spectra from files or plugins, sensors other than `perspective`, BSDFs,
-//! shapes and emitters beyond those listed in each module, `<alias>` and `<path>`, and
-//! Mitsuba 0.x files (version < 2, whose parameter names differ).
+//! `mesh_attribute`, spectra from files, sensors other than `perspective`, `thinlens` and
+//! `orthographic`, BSDFs, shapes and emitters beyond those listed in each module, `<alias>`, and
+//! Mitsuba 0.x files (version < 2, whose parameter names differ). `<path>` folders are searched
+//! for the files that shapes, textures and emitters name (not for `<include>`s).
 
 pub mod bsdf;
 pub mod emitter;
@@ -54,6 +55,7 @@ pub mod ior;
 pub mod props;
 pub mod sensor;
 pub mod shape;
+mod spectrum;
 pub mod texture;
 pub mod transform;
 pub mod xml;
@@ -90,7 +92,20 @@ pub fn import_mitsuba(
         base_dir: path.parent().map_or_else(PathBuf::new, Path::to_path_buf),
         warnings: Vec::new(),
         environment: None,
+        search: Vec::new(),
+        used_area_emitters: Vec::new(),
     };
+    // `<path>` folders, where relative file names are also looked for: gathered first, so that
+    // they hold for the whole file.
+    for el in root.children.iter().filter(|el| el.tag == "path") {
+        el.allow_attrs(&["value"])?;
+        let folder = el.require("value")?;
+        resolve(&cx.base_dir, &folder.value, &cx.options)
+            .map_err(|message| folder.loc.error(message))?;
+        cx.search
+            .push(folder.value.trim_end_matches('/').to_string());
+    }
+    let mut declared_emitters = Vec::new();
     let (width, height) = sensor::DEFAULT_FILM;
     let mut desc = SceneDesc {
         image: ImageDesc {
@@ -132,10 +147,15 @@ pub fn import_mitsuba(
                 let object = shape::read(&mut cx, el)?;
                 desc.objects.push(Spanned::new(0..0, object));
             }
+            // An area emitter with an id is declared for shapes to refer to.
+            "emitter" if plugin_type(el) == Some("area") && el.value("id").is_some() => {
+                declared_emitters.push(el);
+            }
             "emitter" => {
                 let light = emitter::read(&mut cx, el)?;
                 desc.lights.push(Spanned::new(0..0, light));
             }
+            "path" => {} // read above
             "bsdf" | "texture" => declared.push(el),
             "film" | "sampler" => {
                 return Err(el
@@ -177,6 +197,13 @@ pub fn import_mitsuba(
             texture::texture(&mut cx, el)?;
         }
     }
+    for el in declared_emitters {
+        if !cx.used_area_emitters.contains(&std::ptr::from_ref(el)) {
+            cx.warnings.push(el.loc.warning(
+                "an area emitter declared at the top of the scene that no shape refers to emits nothing",
+            ));
+        }
+    }
     // A plugin read twice (a referenced texture, a BSDF used alone and inside a twosided)
     // would repeat its warnings word for word.
     let mut said = std::collections::HashSet::new();
@@ -208,6 +235,11 @@ pub struct Convert<'a> {
     pub materials: bsdf::Materials,
     /// Where the environment emitter is, once one has been read.
     pub environment: Option<Loc>,
+    /// The `<path>` folders (relative to `base_dir`), where file names are looked for after
+    /// `base_dir` itself.
+    pub search: Vec<String>,
+    /// The area emitters shapes have taken, declared at the top of the scene or not.
+    pub used_area_emitters: Vec<*const Element>,
 }
 
 impl<'a> Convert<'a> {
@@ -227,10 +259,23 @@ impl<'a> Convert<'a> {
         }
         let path =
             resolve(&self.base_dir, name, &self.options).map_err(|message| loc.error(message))?;
-        if !path.is_file() {
-            return Err(loc.error(format!("{what} file `{}` not found", path.display())));
+        if path.is_file() {
+            return Ok(name.to_string());
         }
-        Ok(name.to_string())
+        for folder in &self.search {
+            let candidate = format!("{folder}/{name}");
+            let found = resolve(&self.base_dir, &candidate, &self.options)
+                .map_err(|message| loc.error(message))?;
+            if found.is_file() {
+                return Ok(candidate);
+            }
+        }
+        let also = if self.search.is_empty() {
+            String::new()
+        } else {
+            format!(" (nor in the <path> folders {})", self.search.join(", "))
+        };
+        Err(loc.error(format!("{what} file `{}` not found{also}", path.display())))
     }
 }
 
@@ -253,13 +298,8 @@ fn known_types(tag: &str) -> Option<&'static [&'static str]> {
 /// The error for the plugin `el` of a type lucent does not read.
 pub fn unknown_type(el: &Element, kind: &str) -> LoadError {
     let known = known_types(&el.tag).unwrap_or(&[]);
-    let hint = match (el.tag.as_str(), kind) {
-        ("shape", "serialized") => "; convert the mesh to PLY or OBJ",
-        ("sensor", "thinlens") => "; a perspective sensor is the same without depth of field",
-        _ => "",
-    };
     el.loc.error(format!(
-        "unknown {} type `{kind}` (lucent reads: {}){hint}",
+        "unknown {} type `{kind}` (lucent reads: {})",
         el.tag,
         known.join(", ")
     ))

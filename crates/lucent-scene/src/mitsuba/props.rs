@@ -10,6 +10,7 @@
 //! not model (a film's `pixel_format`) from a misspelt one without Mitsuba's whole vocabulary,
 //! so what is left unread becomes a warning, not an error.
 
+use super::spectrum::{self, Role};
 use super::transform;
 use super::xml::{Element, Loc};
 use crate::error::LoadError;
@@ -292,17 +293,46 @@ impl<'a> Plugin<'a> {
         }))
     }
 
-    /// A colour: `<rgb>`, `<spectrum>`, or a number for grey.
+    /// A colour that is not emitted (a reflectance, or a conductor's η or k): `<rgb>`,
+    /// `<spectrum>`, or a number for grey.
     pub fn color(&self, name: &str) -> Result<Option<Rgb>, LoadError> {
+        self.color_as(name, self.role(name))
+    }
+
+    /// A colour that is not emitted, or `default` grey.
+    pub fn color_or(&self, name: &str, default: f32) -> Result<Rgb, LoadError> {
+        Ok(self.color(name)?.unwrap_or(Rgb::gray(default)))
+    }
+
+    /// An emitted colour (an emitter's `radiance`, `intensity` or `irradiance`), or `default`
+    /// grey: a `<spectrum>` becomes RGB as Mitsuba converts an emitted one, which differs from
+    /// a reflectance (see `mitsuba/spectrum.rs`).
+    pub fn emitted_color_or(&self, name: &str, default: f32) -> Result<Rgb, LoadError> {
+        Ok(self
+            .color_as(name, Role::Emitted)?
+            .unwrap_or(Rgb::gray(default)))
+    }
+
+    fn color_as(&self, name: &str, role: Role) -> Result<Option<Rgb>, LoadError> {
         let Some(p) = self.prop(name)? else {
             return Ok(None);
         };
-        self.color_of(p).map(Some)
+        self.color_of(p, role).map(Some)
     }
 
-    /// A colour, or `default` grey.
-    pub fn color_or(&self, name: &str, default: f32) -> Result<Rgb, LoadError> {
-        Ok(self.color(name)?.unwrap_or(Rgb::gray(default)))
+    /// The role of this plugin's colour `name` when it is not emitted. Mitsuba's conductors read
+    /// `eta` and `k` as unbounded textures, which leaves a spectrum above 1 unclamped; every
+    /// other such colour lucent reads is bounded. (The BSDF reader could say so at its call,
+    /// as the emitters do; until it does, this keeps the rule in one place.)
+    fn role(&self, name: &str) -> Role {
+        let unbounded = self.el.tag == "bsdf"
+            && matches!(self.kind, "conductor" | "roughconductor")
+            && matches!(name, "eta" | "k");
+        if unbounded {
+            Role::Unbounded
+        } else {
+            Role::Reflectance
+        }
     }
 
     /// A colour or a `<texture>` plugin.
@@ -321,7 +351,7 @@ impl<'a> Plugin<'a> {
         self.color(name).map(|c| c.map(Colorish::Color))
     }
 
-    fn color_of(&self, p: &Prop) -> Result<Rgb, LoadError> {
+    fn color_of(&self, p: &Prop, role: Role) -> Result<Rgb, LoadError> {
         self.expect(p, &["rgb", "spectrum", "float", "integer"])?;
         let rgb = match p.el.tag.as_str() {
             "rgb" => {
@@ -338,7 +368,11 @@ impl<'a> Plugin<'a> {
                     }
                 }
             }
-            "spectrum" => self.spectrum(p)?,
+            "spectrum" => {
+                let (rgb, warnings) = spectrum::read(p.el, p.name, role)?;
+                self.warnings.borrow_mut().extend(warnings);
+                rgb
+            }
             _ => {
                 p.el.allow_attrs(&["name", "value"])?;
                 let v = p.el.require("value")?;
@@ -352,52 +386,6 @@ impl<'a> Plugin<'a> {
                 .error(format!("`{}`: colours must not be negative", p.name)));
         }
         Ok(rgb)
-    }
-
-    /// `<spectrum value="v">` is grey; a list of `wavelength:value` pairs becomes the grey of
-    /// their mean, with a warning (lucent renders RGB).
-    fn spectrum(&self, p: &Prop) -> Result<Rgb, LoadError> {
-        if let Some(t) = p.el.attr("type") {
-            return Err(t.loc.error(format!(
-                "spectrum plugins (`{}`) are not read by lucent; give an <rgb>",
-                t.value
-            )));
-        }
-        if let Some(f) = p.el.attr("filename") {
-            return Err(f
-                .loc
-                .error("spectra from files are not read by lucent; give an <rgb> or a value"));
-        }
-        p.el.allow_attrs(&["name", "value"])?;
-        let v = p.el.require("value")?;
-        let tokens: Vec<&str> = split(&v.value).collect();
-        if let [one] = tokens[..]
-            && !one.contains(':')
-        {
-            return Ok(Rgb::gray(number(one, &v.loc)? as f32));
-        }
-        let mut sum = 0.0;
-        for t in &tokens {
-            let Some((wavelength, value)) = t.split_once(':') else {
-                return Err(v.loc.error(format!(
-                    "a spectrum is one value or `wavelength:value` pairs; `{t}` is neither"
-                )));
-            };
-            number(wavelength, &v.loc)?;
-            sum += number(value, &v.loc)?;
-        }
-        if tokens.is_empty() {
-            return Err(v.loc.error("the spectrum has no values"));
-        }
-        let mean = sum / tokens.len() as f64;
-        self.warn(
-            &p.el.loc,
-            format!(
-                "the spectrum `{}` is read as the grey {mean}, the mean of its values (lucent renders RGB)",
-                p.name
-            ),
-        );
-        Ok(Rgb::gray(mean as f32))
     }
 
     /// A `<point>` or `<vector>`: `x`, `y`, `z` (missing ones 0) or `value` (one or three
@@ -549,13 +537,27 @@ mod tests {
             p.color("c").unwrap()
         });
         assert_eq!(c, Some(Rgb::gray(2.0)));
-        let (c, warnings) = with(r#"<spectrum name="c" value="400:1, 500:2, 600:6"/>"#, |p| {
-            let c = p.color("c").unwrap();
-            (c, p.warnings.borrow().clone())
+        // A flat list: grey as a reflectance, pinkish as a light (Mitsuba 3.9.1's colours; the
+        // conversion's own tests are in spectrum.rs).
+        let flat = r#"<spectrum name="c" value="400:0.5, 700:0.5"/>"#;
+        let (c, warnings) = with(flat, |p| (p.color("c").unwrap(), p.warnings.take()));
+        let c = c.unwrap();
+        assert!(
+            (c.r - 0.497671).abs() < 1e-6 && (c.g - 0.499878).abs() < 1e-6,
+            "{c:?}"
+        );
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let c = with(flat, |p| p.emitted_color_or("c", 1.0).unwrap());
+        assert!(
+            (c.r - 0.599847).abs() < 1e-6 && (c.b - 0.451722).abs() < 1e-6,
+            "{c:?}"
+        );
+        let c = with(r#"<spectrum name="c" value="2"/>"#, |p| {
+            p.emitted_color_or("c", 1.0).unwrap()
         });
-        assert_eq!(c, Some(Rgb::gray(3.0)));
-        assert_eq!(warnings.len(), 1);
-        assert!(warnings[0].contains("props.xml:3:1: the spectrum `c` is read as the grey 3"));
+        assert!((c.r - 2.0 * 1.204794).abs() < 1e-6, "{c:?}");
+        let c = with("", |p| p.emitted_color_or("c", 3.0).unwrap());
+        assert_eq!(c, Rgb::gray(3.0));
         let e = with(r#"<rgb name="c" value="1 2"/>"#, |p| {
             p.color("c").unwrap_err()
         });

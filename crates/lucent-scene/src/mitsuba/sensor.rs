@@ -1,4 +1,9 @@
-//! `<sensor type="perspective">` → `[camera]` and `[image]`; `<integrator>` → `[render]`.
+//! `<sensor>` → `[camera]` and `[image]`; `<integrator>` → `[render]`.
+//!
+//! `perspective` is a pinhole; `thinlens` adds its lens (`aperture_radius`, and
+//! `focus_distance`, by default the far clip distance, as in Mitsuba); `orthographic` views the
+//! square `[-1, 1]` wide and `[-1, 1]/aspect` high of its camera space, placed by `to_world`
+//! (whose scale sizes it), along +z.
 //!
 //! Mitsuba's camera looks along its +z with +y up, and its camera space is left-handed in
 //! the image: +x points to the image's *left* (`lookat` builds `left = up × dir`). lucent's
@@ -23,7 +28,7 @@ use glam::{DMat4, DVec3};
 use toml::Spanned;
 
 /// The sensor types lucent reads.
-pub const SENSORS: &[&str] = &["perspective"];
+pub const SENSORS: &[&str] = &["perspective", "thinlens", "orthographic"];
 /// The film types lucent reads.
 pub const FILMS: &[&str] = &["hdrfilm"];
 /// The sampler types lucent reads (their `sample_count` only).
@@ -193,6 +198,107 @@ pub fn read<'a>(
     }
 
     let aspect = f64::from(width) / f64::from(height);
+    let m = p.transform("to_world")?;
+    let (m, at) = m.map_or((DMat4::IDENTITY, &el.loc), |(m, loc)| (m, loc));
+    let projection = if p.kind == "orthographic" {
+        let (x, y) = (m.x_axis.truncate().length(), m.y_axis.truncate().length());
+        if (x - y).abs() > 1e-6 * x.max(y) {
+            p.warn(
+                at,
+                format!("the orthographic sensor's to_world scales x ({x}) and y ({y}) apart: lucent's view keeps the image's aspect, sized by y"),
+            );
+        }
+        Projection::Orthographic((2.0 * y / aspect) as f32)
+    } else {
+        Projection::Perspective(fov_of(&p, el, aspect)?)
+    };
+    let lens = if p.kind == "thinlens" {
+        let radius = p.float("aperture_radius")?.ok_or_else(|| {
+            el.loc
+                .error("a thinlens sensor needs its `aperture_radius` (as Mitsuba does)")
+        })?;
+        let far = p.float_or("far_clip", 1e4)?;
+        let focus = p.float_or("focus_distance", far)?;
+        if !(radius >= 0.0 && focus > 0.0 && radius.is_finite() && focus.is_finite()) {
+            return Err(el.loc.error(format!(
+                "the thin lens needs an aperture_radius ≥ 0 and a positive focus_distance, got {radius} and {focus}"
+            )));
+        }
+        Some((Finite(radius as f32), Finite(focus as f32)))
+    } else {
+        None
+    };
+    let eye = m.transform_point3(DVec3::ZERO);
+    let look_at = eye + m.transform_vector3(DVec3::Z);
+    let up = m.transform_vector3(DVec3::Y);
+    // What lucent's camera needs (as the build checks it, but here where the XML can be named).
+    let forward = (look_at - eye).as_vec3();
+    if forward.try_normalize().is_none() || forward.cross(up.as_vec3()).try_normalize().is_none() {
+        return Err(at.error(
+            "the sensor's to_world flattens its view: +z and +y must map to two directions that are not parallel",
+        ));
+    }
+    if transform::handedness(&m) < 0.0 {
+        p.warn(
+            at,
+            "the sensor's to_world mirrors (negative determinant): lucent's image is the mirror image of Mitsuba's",
+        );
+    }
+    if transform::uniform_scale(&m).is_none() && p.kind != "orthographic" {
+        p.warn(
+            at,
+            "the sensor's to_world scales unevenly or shears: lucent keeps only its position and orientation",
+        );
+    }
+    let v = |v: DVec3| -> Result<Vector, LoadError> {
+        let s = v.as_vec3();
+        if s.is_finite() {
+            Ok(Vector(s))
+        } else {
+            Err(at.error("the camera is beyond single precision"))
+        }
+    };
+    desc.camera = Spanned::new(
+        0..0,
+        CameraDesc {
+            eye: v(eye)?,
+            look_at: v(look_at)?,
+            up: v(up)?,
+            fov: Finite(match projection {
+                Projection::Perspective(fov) => fov as f32,
+                Projection::Orthographic(_) => 45.0,
+            }),
+            aperture: lens.map(|(r, _)| r),
+            focus_distance: lens.map(|(_, f)| f),
+            orthographic: match projection {
+                Projection::Orthographic(h) => Some(Finite(h)),
+                Projection::Perspective(_) => None,
+            },
+            motion: None,
+        },
+    );
+    desc.image.width = Spanned::new(0..0, width);
+    desc.image.height = Spanned::new(0..0, height);
+    desc.image.samples = Spanned::new(0..0, samples);
+    p.finish(
+        &mut cx.warnings,
+        &["near_clip", "far_clip", "focus_distance"],
+    );
+    Ok(())
+}
+
+/// How a sensor projects.
+#[derive(Clone, Copy)]
+enum Projection {
+    /// Through a point: the vertical field of view in degrees.
+    Perspective(f64),
+    /// Parallel: the view's height in scene units.
+    Orthographic(f32),
+}
+
+/// A perspective sensor's vertical field of view in degrees, from its `fov` (along
+/// `fov_axis`) or `focal_length`, for an image of `aspect`.
+fn fov_of(p: &super::props::Plugin, el: &Element, aspect: f64) -> Result<f64, LoadError> {
     let (fov, axis) = match (p.float("fov")?, p.string("focal_length")?) {
         (Some(_), Some((_, loc))) => {
             return Err(loc.error("give either `fov` or `focal_length`, not both"));
@@ -214,60 +320,7 @@ pub fn read<'a>(
             "the field of view must be between 0 and 180 degrees, got {fov}"
         )));
     }
-    let fov_y = vertical_fov(fov, axis, aspect);
-
-    let m = p.transform("to_world")?;
-    let (m, at) = m.map_or((DMat4::IDENTITY, &el.loc), |(m, loc)| (m, loc));
-    let eye = m.transform_point3(DVec3::ZERO);
-    let look_at = eye + m.transform_vector3(DVec3::Z);
-    let up = m.transform_vector3(DVec3::Y);
-    // What lucent's camera needs (as the build checks it, but here where the XML can be named).
-    let forward = (look_at - eye).as_vec3();
-    if forward.try_normalize().is_none() || forward.cross(up.as_vec3()).try_normalize().is_none() {
-        return Err(at.error(
-            "the sensor's to_world flattens its view: +z and +y must map to two directions that are not parallel",
-        ));
-    }
-    if transform::handedness(&m) < 0.0 {
-        p.warn(
-            at,
-            "the sensor's to_world mirrors (negative determinant): lucent's image is the mirror image of Mitsuba's",
-        );
-    }
-    if transform::uniform_scale(&m).is_none() {
-        p.warn(
-            at,
-            "the sensor's to_world scales unevenly or shears: lucent keeps only its position and orientation",
-        );
-    }
-    let v = |v: DVec3| -> Result<Vector, LoadError> {
-        let s = v.as_vec3();
-        if s.is_finite() {
-            Ok(Vector(s))
-        } else {
-            Err(at.error("the camera is beyond single precision"))
-        }
-    };
-    desc.camera = Spanned::new(
-        0..0,
-        CameraDesc {
-            eye: v(eye)?,
-            look_at: v(look_at)?,
-            up: v(up)?,
-            fov: Finite(fov_y as f32),
-            aperture: None,
-            focus_distance: None,
-            motion: None,
-        },
-    );
-    desc.image.width = Spanned::new(0..0, width);
-    desc.image.height = Spanned::new(0..0, height);
-    desc.image.samples = Spanned::new(0..0, samples);
-    p.finish(
-        &mut cx.warnings,
-        &["near_clip", "far_clip", "focus_distance"],
-    );
-    Ok(())
+    Ok(vertical_fov(fov, axis, aspect))
 }
 
 /// The diagonal field of view of a 35 mm film behind a lens of `focal_length` (`"50mm"`).

@@ -3,6 +3,7 @@
 //! | Mitsuba | lucent |
 //! | --- | --- |
 //! | `obj`, `ply` (`filename`, `face_normals`, `flip_normals`, `to_world`) | `mesh` (`file`, `smooth = false` for face normals, `flip_normals`, `transform`) |
+//! | `serialized` (the same, and `shape_index`, default 0) | `mesh` as above, with `part` = the shape index; its texture coordinates as written, as Mitsuba reads them (see [`crate::serialized`]) |
 //! | `sphere` (`center`, `radius`, `to_world`) | `sphere`: `to_world · translate(center) · scale(radius)` must be a similarity; `uv_axes` its rotation, so that textures and tangents lie as in Mitsuba |
 //! | `rectangle`, `cube`, `disk` (`to_world`) | the same kinds with `transform` and `flip_v` (Mitsuba's uvs): the canonical shapes agree (`[-1, 1]²` at z = 0 facing +z, `[-1, 1]³`, the unit disk at z = 0 facing +z) |
 //!
@@ -23,13 +24,21 @@ use glam::{DMat4, DVec3};
 use toml::Spanned;
 
 /// The shape types lucent reads.
-pub const TYPES: &[&str] = &["obj", "ply", "sphere", "rectangle", "cube", "disk"];
+pub const TYPES: &[&str] = &[
+    "obj",
+    "ply",
+    "serialized",
+    "sphere",
+    "rectangle",
+    "cube",
+    "disk",
+];
 
 /// The object of the `<shape>` `el`.
 pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, LoadError> {
     let p = cx.plugin(el)?;
     let kind = match p.kind {
-        "obj" | "ply" => ObjectKind::Mesh,
+        "obj" | "ply" | "serialized" => ObjectKind::Mesh,
         "sphere" => ObjectKind::Sphere,
         "rectangle" => ObjectKind::Rectangle,
         "cube" => ObjectKind::Cube,
@@ -57,6 +66,19 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
         ObjectKind::Mesh => {
             let (file, loc) = p.required_string("filename")?;
             o.file = Some(Spanned::new(0..0, cx.file_name(file, loc, "mesh")?));
+            if p.kind == "serialized" {
+                // The file's shapes are the mesh file's parts, by index.
+                let index = match p.integer("shape_index")? {
+                    None => 0,
+                    Some((i, loc)) => u32::try_from(i).map_err(|_| {
+                        loc.error(format!(
+                            "a shape index is a number of 0 or more (at most {}), not {i}",
+                            u32::MAX
+                        ))
+                    })?,
+                };
+                o.part = Some(Spanned::new(0..0, index.to_string()));
+            }
             if p.boolean("face_normals")? == Some(true) {
                 o.smooth = Some(false);
             }
@@ -130,8 +152,9 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
                 ep.kind
             )));
         }
-        let radiance = ep.color_or("radiance", 1.0)?;
+        let radiance = ep.emitted_color_or("radiance", 1.0)?;
         ep.finish(&mut cx.warnings, &[]);
+        cx.used_area_emitters.push(std::ptr::from_ref(e.el));
         material = bsdf::emissive(cx, &material, radiance, e.at);
     }
     o.material = Spanned::new(0..0, material);

@@ -115,7 +115,7 @@ pub fn render_sppm(
         } else {
             (b.center() - scene.camera.eye()).length().max(1e-3)
         };
-        3.0 * scene.camera.pixel_angle() * distance
+        3.0 * scene.camera.pixel_size_at(distance)
     };
     let photons = if sppm.photons == 0 {
         pixels

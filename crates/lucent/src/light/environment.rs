@@ -29,6 +29,8 @@ pub struct EnvironmentLight {
     directions: Directions,
     /// Mean radiance over directions (for the light's power).
     mean: f32,
+    /// The rotation taking a world direction to the image's frame.
+    to_image: glam::Mat3,
 }
 
 impl EnvironmentLight {
@@ -37,6 +39,7 @@ impl EnvironmentLight {
         (!c.is_black() && c.is_finite()).then_some(Self {
             directions: Directions::Uniform,
             mean: luminance(c),
+            to_image: glam::Mat3::IDENTITY,
         })
     }
 
@@ -73,7 +76,14 @@ impl EnvironmentLight {
         Some(Self {
             directions: Directions::Image(dist),
             mean: luminance(image.latlong_mean()),
+            to_image: glam::Mat3::IDENTITY,
         })
+    }
+
+    /// This environment turned: `to_image` (a rotation) takes a world direction to the
+    /// image's frame.
+    pub fn rotated(self, to_image: glam::Mat3) -> Self {
+        Self { to_image, ..self }
     }
 
     /// A direction drawn from `u`, with its solid-angle density.
@@ -83,6 +93,8 @@ impl EnvironmentLight {
             Directions::Image(dist) => {
                 let (uv, pdf_uv) = dist.sample(u);
                 let (dir, sin_theta) = latlong_direction(uv);
+                // A rotation's inverse is its transpose.
+                let dir = self.to_image.transpose() * dir;
                 (pdf_uv > 0.0 && sin_theta > 0.0)
                     .then(|| (dir, pdf_uv / (2.0 * PI * PI * sin_theta)))
             }
@@ -94,6 +106,7 @@ impl EnvironmentLight {
         match &self.directions {
             Directions::Uniform => 1.0 / (4.0 * PI),
             Directions::Image(dist) => {
+                let dir = self.to_image * dir;
                 let uv = crate::texture::image::latlong_uv(dir);
                 let sin_theta = (1.0 - dir.y * dir.y).max(0.0).sqrt();
                 if sin_theta > 0.0 {

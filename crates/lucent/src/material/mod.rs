@@ -380,6 +380,9 @@ pub struct Material {
     /// Whether a mesh's vertex colours multiply the diffuse colour (`kd`, and the base of
     /// diffuse and plastic surfaces). Mitsuba's scenes ask for them explicitly instead.
     pub vertex_colors: bool,
+    /// Whether the surface's back is not there: every ray that meets it from behind passes
+    /// through, as glTF culls the back faces of single-sided materials.
+    pub cull_back: bool,
 }
 
 impl Default for Material {
@@ -399,6 +402,7 @@ impl Default for Material {
             surface: Surface::Classic,
             two_sided: true,
             vertex_colors: true,
+            cull_back: false,
         }
     }
 }

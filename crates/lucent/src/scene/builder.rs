@@ -103,6 +103,7 @@ pub struct SceneBuilder {
     lights: Vec<Light>,
     images: Vec<ImageTexture>,
     environment: Option<u32>,
+    environment_to_image: glam::Mat3,
     spheres: Vec<(Sphere, ObjectTag)>,
     sphere_maps: Vec<SphereMap>,
     planes: Vec<(Plane, ObjectTag)>,
@@ -126,6 +127,7 @@ impl SceneBuilder {
             lights: vec![],
             images: vec![],
             environment: None,
+            environment_to_image: glam::Mat3::IDENTITY,
             spheres: vec![],
             sphere_maps: vec![],
             planes: vec![],
@@ -195,6 +197,13 @@ impl SceneBuilder {
     /// colour.
     pub fn environment(&mut self, image: Option<u32>) -> &mut Self {
         self.environment = image;
+        self
+    }
+
+    /// The environment image's orientation: the rotation taking a world direction to the
+    /// image's frame (+y up, the centre column along −z). Identity by default.
+    pub fn environment_rotation(&mut self, to_image: glam::Mat3) -> &mut Self {
+        self.environment_to_image = to_image;
         self
     }
 
@@ -539,6 +548,7 @@ impl SceneBuilder {
             EnvironmentSource {
                 background: self.background,
                 image: self.environment.map(|i| &self.images[i as usize]),
+                to_image: self.environment_to_image,
             },
             &self.lights,
             self.objects,
@@ -555,7 +565,10 @@ impl SceneBuilder {
                 kind,
             })
         });
-        let has_cutouts = self.materials.iter().any(|m| m.opacity.is_some());
+        let has_cutouts = self
+            .materials
+            .iter()
+            .any(|m| m.opacity.is_some() || m.cull_back);
         let material_needs = Arc::new(self.materials.iter().map(MaterialNeeds::of).collect());
         let mut scene = Scene {
             has_cutouts,
@@ -567,6 +580,7 @@ impl SceneBuilder {
             lights: self.lights,
             images: Arc::new(self.images),
             environment: self.environment,
+            environment_to_image: self.environment_to_image,
             spheres: Arc::new(self.spheres),
             sphere_maps: Arc::new(self.sphere_maps),
             planes: Arc::new(self.planes),
@@ -657,6 +671,7 @@ fn merged(
 struct EnvironmentSource<'a> {
     background: Rgb,
     image: Option<&'a ImageTexture>,
+    to_image: glam::Mat3,
 }
 
 /// The lights of the path tracer: every emitting sphere and mesh instance (in world space),
@@ -702,7 +717,7 @@ fn emitters(
         area.add_triangles(tag.object, ke, &triangles);
     }
     let environment = match environment.image {
-        Some(image) => EnvironmentLight::image(image),
+        Some(image) => EnvironmentLight::image(image).map(|e| e.rotated(environment.to_image)),
         None => EnvironmentLight::constant(environment.background),
     };
     let radius = if bounds.is_empty() {

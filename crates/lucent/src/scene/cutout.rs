@@ -1,6 +1,7 @@
 //! Cut-out surfaces: where a material's opacity (glTF's alpha, Mitsuba's `mask`) is below 1,
 //! a ray passes through the surface as if it were not there — camera and scattered rays, and
-//! shadow rays alike, so a cut-away leaf casts no shadow where it is cut away.
+//! shadow rays alike, so a cut-away leaf casts no shadow where it is cut away. The back of a
+//! material that culls it (glTF's single-sided materials) is cut away whole.
 //!
 //! Fractional opacity is a coin toss per crossing: the ray passes where a hash of the hit
 //! point and the ray's direction falls at or above the opacity (pbrt-v4's `HashFloat`), so the
@@ -39,9 +40,13 @@ fn crossing_hash(hit: &SurfaceHit, ray: &Ray) -> f32 {
 
 impl Scene {
     /// Whether the surface hit by `ray` at `hit` stops it: always for an opaque material;
-    /// with the probability of its opacity there for a cut-out one.
+    /// with the probability of its opacity there for a cut-out one; never from behind for a
+    /// material that culls its back.
     pub fn stops(&self, hit: &SurfaceHit, ray: &Ray) -> bool {
         let m = &self.materials[hit.material as usize];
+        if m.cull_back && hit.normal.dot(ray.dir) > 0.0 {
+            return false;
+        }
         if m.opacity.is_none() {
             return true;
         }

@@ -170,6 +170,8 @@ pub struct Scene {
     /// A lat-long image (an index into `images`) that rays hitting nothing see instead of
     /// `background`.
     pub environment: Option<u32>,
+    /// The rotation taking a world direction to the environment image's frame.
+    pub environment_to_image: glam::Mat3,
     spheres: Arc<Vec<(Sphere, ObjectTag)>>,
     /// How each sphere's texture coordinates lie on it (parallel to `spheres`).
     sphere_maps: Arc<Vec<SphereMap>>,
@@ -284,7 +286,9 @@ impl Scene {
     #[inline]
     pub fn background_along(&self, dir: glam::Vec3) -> Rgb {
         match self.environment.and_then(|i| self.images.get(i as usize)) {
-            Some(image) => image.lookup_direction(dir.normalize_or_zero()),
+            Some(image) => {
+                image.lookup_direction((self.environment_to_image * dir).normalize_or_zero())
+            }
             None => self.background,
         }
     }
