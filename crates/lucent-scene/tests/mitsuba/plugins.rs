@@ -356,8 +356,16 @@ fn emitters_map_onto_lights() {
     assert_eq!(sky.intensity.unwrap().0, Rgb::gray(2.0));
     // Mitsuba's image centre faces +z, lucent's −z: without a to_world, a half turn about +y.
     let r = sky.rotation.as_ref().expect("a rotation").get_ref().0;
-    assert!(r.x_axis.abs_diff_eq(glam::Vec4::new(-1.0, 0.0, 0.0, 0.0), 1e-6), "{r}");
-    assert!(r.z_axis.abs_diff_eq(glam::Vec4::new(0.0, 0.0, -1.0, 0.0), 1e-6), "{r}");
+    assert!(
+        r.x_axis
+            .abs_diff_eq(glam::Vec4::new(-1.0, 0.0, 0.0, 0.0), 1e-6),
+        "{r}"
+    );
+    assert!(
+        r.z_axis
+            .abs_diff_eq(glam::Vec4::new(0.0, 0.0, -1.0, 0.0), 1e-6),
+        "{r}"
+    );
     assert!(
         !imported.warnings.iter().any(|w| w.contains("envmap")),
         "{:?}",
