@@ -367,7 +367,7 @@ fn emitters_map_onto_lights() {
         "{r}"
     );
     assert!(
-        !imported.warnings.iter().any(|w| w.contains("envmap")),
+        !imported.warnings.iter().any(|w| w.contains("to_world")),
         "{:?}",
         imported.warnings
     );
