@@ -169,16 +169,16 @@ pub fn import_gltf(
                 // Primitives of the same accessors are one part: the build stores it once and
                 // places it as instances (a small file cannot multiply a large buffer).
                 let key = *same_geometry
-                    .entry(geometry(doc.as_json(), &prim))
+                    .entry(geometry(&prim, asset.uv_set(&prim)))
                     .or_insert((mesh.index(), prim.index()));
                 let triangles = match decoded.get(&key) {
                     Some(&t) => t,
                     None => {
                         let t = match primitive::decode(
-                            asset.doc.as_json(),
                             &asset.buffers,
                             key.0,
                             &prim,
+                            asset.uv_set(&prim),
                         )
                         .map_err(|e| asset.error(e))?
                         {
@@ -302,7 +302,7 @@ pub fn import_gltf(
 /// data through two accessors is the same geometry.
 type Geometry = (String, Option<String>, Vec<(String, String)>, u32);
 
-fn geometry(root: &gltf::json::Root, prim: &gltf::Primitive) -> Geometry {
+fn geometry(prim: &gltf::Primitive, uv_set: u32) -> Geometry {
     let source = |a: &gltf::Accessor| match (a.view(), a.sparse()) {
         (Some(view), None) => format!(
             "view {} +{} {}×{:?} {:?} {}",
@@ -325,7 +325,7 @@ fn geometry(root: &gltf::json::Root, prim: &gltf::Primitive) -> Geometry {
         format!("{:?}", prim.mode()),
         prim.indices().map(|a| source(&a)),
         attributes,
-        material::uv_set(root, prim.material().index()),
+        uv_set,
     )
 }
 
@@ -405,7 +405,7 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
                 mesh.primitives().len()
             ))
         })?;
-        return match primitive::decode(asset.doc.as_json(), &asset.buffers, m, &prim)
+        return match primitive::decode(&asset.buffers, m, &prim, asset.uv_set(&prim))
             .map_err(|e| asset.error(e))?
         {
             Decoded::Triangles(mesh, _) => Ok(mesh),
@@ -428,7 +428,7 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
             let mesh = match meshes.entry(key) {
                 Entry::Occupied(e) => e.into_mut(),
                 Entry::Vacant(e) => e.insert(
-                    match primitive::decode(asset.doc.as_json(), &asset.buffers, key.0, &prim)
+                    match primitive::decode(&asset.buffers, key.0, &prim, asset.uv_set(&prim))
                         .map_err(|e| asset.error(e))?
                     {
                         Decoded::Triangles(m, _) => Some(m),
@@ -458,6 +458,8 @@ struct Asset {
     doc: gltf::Document,
     /// The data of each buffer, exactly its declared `byteLength` long.
     buffers: Vec<Vec<u8>>,
+    /// The texture coordinate set each material's primitives keep (`material::uv_set`).
+    uv_sets: Vec<u32>,
 }
 
 impl Asset {
@@ -516,16 +518,29 @@ impl Asset {
             data.truncate(declared);
             buffers.push(data);
         }
+        let root = doc.as_json();
+        let uv_sets = (0..root.materials.len())
+            .map(|i| material::uv_set(root, Some(i)))
+            .collect();
         Ok(Self {
             path: path.to_path_buf(),
             base_dir,
             doc,
             buffers,
+            uv_sets,
         })
     }
 
     fn error(&self, message: impl Into<String>) -> LoadError {
         LoadError::file(&self.path, message)
+    }
+
+    /// The texture coordinate set `prim` keeps: its material's (0 without one).
+    fn uv_set(&self, prim: &gltf::Primitive) -> u32 {
+        prim.material()
+            .index()
+            .and_then(|i| self.uv_sets.get(i).copied())
+            .unwrap_or(0)
     }
 
     /// See [`GltfFile::embedded_image`]. The JSON is read directly: the crate's

@@ -309,47 +309,22 @@ fn read_shape(z: &mut Inflater, version: u16) -> Result<Shape, LoadError> {
     let need = vertices * floats * size + triangles * 12;
     z.check_claim(need)?;
 
-    let finite = |z: &Inflater, v: &[f32], i: u64, what: &str| {
-        if v.iter().all(|x| x.is_finite()) {
-            Ok(())
-        } else {
-            Err(z.error(format!(
-                "vertex {i}'s {what} {v:?} is not finite in single precision"
-            )))
-        }
-    };
-    let mut positions = Vec::with_capacity(vertices.min(RESERVE) as usize);
-    for i in 0..vertices {
-        let p = z.floats::<3>(double, "the positions")?;
-        finite(z, &p, i, "position")?;
-        positions.push(Vec3::from_array(p));
-    }
+    let positions = z.attribute::<3>(vertices, double, ("the positions", "position"))?;
     let mut normals = Vec::new();
     if has(HAS_NORMALS) {
-        normals.reserve(vertices.min(RESERVE) as usize);
-        for i in 0..vertices {
-            let n = z.floats::<3>(double, "the normals")?;
-            finite(z, &n, i, "normal")?;
-            normals.push(unit(Vec3::from_array(n)));
-        }
+        normals = z.attribute::<3>(vertices, double, ("the normals", "normal"))?;
     }
     let mut uvs = Vec::new();
     if has(HAS_UVS) {
-        uvs.reserve(vertices.min(RESERVE) as usize);
-        for i in 0..vertices {
-            let uv = z.floats::<2>(double, "the texture coordinates")?;
-            finite(z, &uv, i, "texture coordinate")?;
-            uvs.push(Vec2::from_array(uv));
-        }
+        uvs = z.attribute::<2>(
+            vertices,
+            double,
+            ("the texture coordinates", "texture coordinate"),
+        )?;
     }
     let mut colors = Vec::new();
     if has(HAS_COLORS) {
-        colors.reserve(vertices.min(RESERVE) as usize);
-        for i in 0..vertices {
-            let c = z.floats::<3>(double, "the vertex colours")?;
-            finite(z, &c, i, "colour")?;
-            colors.push(Rgb::from(c));
-        }
+        colors = z.attribute::<3>(vertices, double, ("the vertex colours", "colour"))?;
     }
     let mut tris = Vec::with_capacity(triangles.min(RESERVE) as usize);
     for t in 0..triangles {
@@ -362,10 +337,13 @@ fn read_shape(z: &mut Inflater, version: u16) -> Result<Shape, LoadError> {
         }
         tris.push(tri);
     }
-    let mut mesh = Mesh::new(positions, tris);
-    mesh.normals = normals;
-    mesh.uvs = uvs;
-    mesh.colors = colors;
+    let mut mesh = Mesh::new(positions.into_iter().map(Vec3::from_array).collect(), tris);
+    mesh.normals = normals
+        .into_iter()
+        .map(|n| unit(Vec3::from_array(n)))
+        .collect();
+    mesh.uvs = uvs.into_iter().map(Vec2::from_array).collect();
+    mesh.colors = colors.into_iter().map(Rgb::from).collect();
     Ok(Shape { name, mesh })
 }
 
@@ -497,6 +475,27 @@ impl<'a> Inflater<'a> {
     }
 
     /// The next `N` numbers, single or double precision, as `f32`.
+    /// `vertices` elements of `N` numbers, each finite in single precision: `array` names them
+    /// all in messages, `element` one of them.
+    fn attribute<const N: usize>(
+        &mut self,
+        vertices: u64,
+        double: bool,
+        (array, element): (&str, &str),
+    ) -> Result<Vec<[f32; N]>, LoadError> {
+        let mut out = Vec::with_capacity(vertices.min(RESERVE) as usize);
+        for i in 0..vertices {
+            let v = self.floats::<N>(double, array)?;
+            if !v.iter().all(|x| x.is_finite()) {
+                return Err(self.error(format!(
+                    "vertex {i}'s {element} {v:?} is not finite in single precision"
+                )));
+            }
+            out.push(v);
+        }
+        Ok(out)
+    }
+
     fn floats<const N: usize>(&mut self, double: bool, what: &str) -> Result<[f32; N], LoadError> {
         let mut out = [0.0; N];
         for x in &mut out {

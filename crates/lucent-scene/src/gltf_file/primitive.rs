@@ -16,13 +16,13 @@ pub(super) enum Decoded {
     Skipped(String),
 }
 
-/// Reads primitive `prim` of mesh `mesh`, with the texture coordinates of its material's set
-/// (`TEXCOORD_n`, see `material::uv_set`). Errors name the mesh and primitive.
+/// Reads primitive `prim` of mesh `mesh`, with the texture coordinates of set `uv_set`
+/// (`TEXCOORD_n`: its material's, see `material::uv_set`). Errors name the mesh and primitive.
 pub(super) fn decode(
-    root: &gltf::json::Root,
     buffers: &[Vec<u8>],
     mesh: usize,
     prim: &gltf::Primitive,
+    uv_set: u32,
 ) -> Result<Decoded, String> {
     let label = format!("mesh {mesh} primitive {}", prim.index());
     let err = |e: String| format!("{label}: {e}");
@@ -88,8 +88,7 @@ pub(super) fn decode(
         }
     };
     let normals = optional(Semantic::Normals, &[3], "normals");
-    let set = super::material::uv_set(root, prim.material().index());
-    let uvs = optional(Semantic::TexCoords(set), &[2], "texture coordinates");
+    let uvs = optional(Semantic::TexCoords(uv_set), &[2], "texture coordinates");
     let colors = optional(Semantic::Colors(0), &[3, 4], "colours");
     let tangents = optional(Semantic::Tangents, &[4], "tangents");
     if let Some((v, _)) = normals {
