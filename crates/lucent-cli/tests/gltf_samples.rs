@@ -249,3 +249,106 @@ fn a_single_sided_face_seen_from_behind_is_culled() {
         .count();
     assert!(green > 100 && red < green, "green {green}, red {red}");
 }
+
+#[test]
+fn normal_maps_light_their_bumps_from_the_side_the_geometry_is_lit() {
+    let Some(dir) = model("NormalTangentTest") else {
+        return;
+    };
+    let out = tempfile::tempdir().unwrap();
+    let view = ([0.0, -0.125, 5.0], [0.0, -0.125, 0.0], [0.0, 1.0, 0.0]);
+    let img = pattern(
+        out.path(),
+        &dir.join("glTF/NormalTangentTest.gltf"),
+        view,
+        2.4,
+        480,
+    );
+    // Each pair of tiles: a dome of geometry (centred at x, from the mesh) and, 0.32 to its
+    // right, the same dome as a normal map, in each tangent orientation the rows try. The
+    // default light comes from the upper left (with one from the camera): the upper left of
+    // every dome is the brighter, the map's as the geometry's. (The gold column is left out:
+    // a metal under two lights shows highlights, not shading.)
+    let at =
+        |x: f32, y: f32| luminance(mean(&img, 2.4, (x - 0.02, x + 0.02), (y - 0.02, y + 0.02)));
+    for x in [-0.95f32, -0.15] {
+        for row in [-0.8f32, -0.4, 0.0, 0.4, 0.8] {
+            for (what, cx) in [("geometry", x), ("normal map", x + 0.32)] {
+                let cy = row + 0.125;
+                let (upper_left, lower_right) =
+                    (at(cx - 0.05, cy + 0.05), at(cx + 0.05, cy - 0.05));
+                assert!(
+                    upper_left > 1.2 * lower_right,
+                    "{what} at ({cx}, {cy}): upper left {upper_left}, lower right {lower_right}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn vertex_colours_colour_the_box() {
+    let Some(dir) = model("BoxVertexColors") else {
+        return;
+    };
+    let out = tempfile::tempdir().unwrap();
+    let view = ([0.0, 0.0, 5.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let img = pattern(
+        out.path(),
+        &dir.join("glTF/BoxVertexColors.gltf"),
+        view,
+        1.2,
+        120,
+    );
+    // The front face's corners take their vertices' colours: not one grey, nor one colour.
+    let corner = |sx: f32, sy: f32| {
+        let x = 0.4 * sx;
+        let y = 0.4 * sy;
+        mean(&img, 1.2, (x - 0.05, x + 0.05), (y - 0.05, y + 0.05))
+    };
+    let corners = [
+        corner(-1.0, 1.0),
+        corner(1.0, 1.0),
+        corner(-1.0, -1.0),
+        corner(1.0, -1.0),
+    ];
+    let saturated = corners
+        .iter()
+        .filter(|c| {
+            let (hi, lo) = (c[0].max(c[1]).max(c[2]), c[0].min(c[1]).min(c[2]));
+            hi > 2.0 * lo.max(1e-4)
+        })
+        .count();
+    let chroma = |c: [f32; 3]| {
+        let s = c[0] + c[1] + c[2];
+        c.map(|v| v / s.max(1e-6))
+    };
+    let spread = corners
+        .iter()
+        .flat_map(|a| corners.iter().map(move |b| (chroma(*a), chroma(*b))))
+        .map(|(a, b)| (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0f32, f32::max))
+        .fold(0.0f32, f32::max);
+    assert!(saturated >= 2 && spread > 0.2, "{corners:?}");
+}
+
+#[test]
+fn a_double_sided_plane_shows_its_texture_from_below() {
+    let Some(dir) = model("TwoSidedPlane") else {
+        return;
+    };
+    let out = tempfile::tempdir().unwrap();
+    // The plane lies in y = 0 facing +y; from below, its back shows the same wood, lit by
+    // the light from the camera (single-sided, it would be culled: the grey background).
+    let view = ([0.0, -5.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, -1.0]);
+    let img = pattern(
+        out.path(),
+        &dir.join("glTF/TwoSidedPlane.gltf"),
+        view,
+        2.4,
+        96,
+    );
+    // (The light along the view puts the wood's glossy highlight in every pixel, which pales
+    // its colour; the grey background would give r = g = b = 0.05.)
+    let [r, g, b] = mean(&img, 2.4, (-0.6, 0.6), (-0.6, 0.6));
+    assert!(r > 0.1 && r > 1.15 * b && r > g, "{r} {g} {b}");
+}

@@ -129,8 +129,13 @@ struct Reader<'a, 'b> {
 }
 
 impl Reader<'_, '_> {
+    /// Notes `s` once (a texture read for two parameters, as metallicRoughnessTexture is, would
+    /// say it twice).
     fn note(&mut self, s: impl std::fmt::Display) {
-        self.notes.push(format!("{}: {s}", self.label));
+        let note = format!("{}: {s}", self.label);
+        if !self.notes.contains(&note) {
+            self.notes.push(note);
+        }
     }
 
     /// The image lookup of `slot` reading `channel` (`None` when the image cannot be read,
