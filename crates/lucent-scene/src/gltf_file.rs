@@ -81,8 +81,9 @@ pub const IMAGE_HEIGHT: u32 = 600;
 
 /// The extensions read (others listed in `extensionsUsed` give a warning; others listed in
 /// `extensionsRequired` make the file unreadable).
-const SUPPORTED_EXTENSIONS: [&str; 11] = [
+const SUPPORTED_EXTENSIONS: [&str; 12] = [
     "KHR_lights_punctual",
+    "KHR_mesh_quantization",
     "KHR_materials_transmission",
     "KHR_materials_ior",
     "KHR_materials_emissive_strength",
@@ -650,6 +651,10 @@ fn parse_document(json: &[u8], path: &Path, text: bool) -> Result<gltf::Document
             format!("the file requires extension {ext}, which is not supported"),
         ));
     }
+    // Extensions lucent reads but the crate does not know (KHR_mesh_quantization, most
+    // material extensions) would fail its validation when required: they are checked above.
+    root.extensions_required
+        .retain(|e| gltf::json::extensions::ENABLED_EXTENSIONS.contains(&e.as_str()));
     forgive_positions(&mut root).map_err(|e| LoadError::file(path, e))?;
     gltf::Document::from_json(root).map_err(|e| {
         let message = match e {

@@ -998,3 +998,65 @@ fn primitives_of_the_same_accessors_are_stored_once() {
     assert_eq!((counts.meshes, counts.instances), (1, n));
     assert_eq!((counts.triangles, counts.unique_triangles), (n, 1));
 }
+
+/// `KHR_mesh_quantization`: positions as normalised shorts, normals as normalised bytes and
+/// texture coordinates as unsigned shorts, dequantized by the node's scale.
+#[test]
+fn quantized_attributes_are_read_and_placed_by_their_node() {
+    let dir = Dir::new("quantized");
+    let mut a = Asset::default();
+    let shorts = |v: &[i16]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };
+    // (0, 0, 0), (1, 0, 0), (0, 1, 0) as shorts normalised by 32767, each padded to 8 bytes.
+    let position = a.accessor(
+        &shorts(&[0, 0, 0, 0, 32767, 0, 0, 0, 0, 32767, 0, 0]),
+        5122,
+        3,
+        "VEC3",
+        r#", "normalized": true, "min": [0, 0, 0], "max": [32767, 32767, 0]"#,
+    );
+    a.views[position] = a.views[position].replace("}", r#", "byteStride": 8}"#);
+    let normal = a.accessor(
+        &[0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0],
+        5120,
+        3,
+        "VEC3",
+        r#", "normalized": true"#,
+    );
+    a.views[normal] = a.views[normal].replace("}", r#", "byteStride": 4}"#);
+    let uv = a.accessor(
+        &[0, 0, 0, 0, 255, 255, 0, 0, 0, 0, 255, 255],
+        U16,
+        3,
+        "VEC2",
+        r#", "normalized": true"#,
+    );
+    let rest = format!(
+        r#""extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": {position}, "NORMAL": {normal}, "TEXCOORD_0": {uv}}}}}]}}],
+  "nodes": [{{"mesh": 0, "scale": [2, 2, 2]}}],
+  "scenes": [{{"nodes": [0]}}]"#
+    );
+    let path = a.write_embedded(&dir, "quantized.gltf", &rest);
+    let mesh = whole(&path);
+    assert_near(
+        &mesh.positions,
+        &[
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+        ],
+    );
+    assert!(
+        mesh.normals.iter().all(|n| (*n - Vec3::Z).length() < 1e-6),
+        "{:?}",
+        mesh.normals
+    );
+    assert_eq!(
+        mesh.uvs,
+        [
+            glam::Vec2::ZERO,
+            glam::Vec2::new(1.0, 0.0),
+            glam::Vec2::new(0.0, 1.0)
+        ]
+    );
+}
