@@ -19,7 +19,8 @@
 //! - **Meshes**: one object per (node, triangle primitive), placed by the node's world matrix;
 //!   a mesh instanced on several nodes gives several objects with the same part. Triangle lists,
 //!   strips and fans are read, indexed (8, 16, 32 bits) or not; `POSITION`, `NORMAL`,
-//!   `TANGENT`, `TEXCOORD_0` (glTF's convention, kept) and `COLOR_0` (alpha dropped); sparse
+//!   `TANGENT`, `TEXCOORD_n` (the set its material reads; glTF's convention, kept) and
+//!   `COLOR_0` (alpha dropped); sparse
 //!   accessors.
 //!   Points and lines are skipped with a warning.
 //! - **Materials**: named `gltf:<name or index>`, made unique; `gltf:default` (diffuse grey
@@ -30,14 +31,16 @@
 //! - **Lights** (KHR_lights_punctual): photometric to radiometric by [`LUMENS_PER_WATT`]; at
 //!   the node's origin, shining down its −z; quadratic falloff for point and spot lights; spot
 //!   cone angles → `cutoff` (outer) and `cutoff_start` (inner) in degrees.
-//! - **Camera**: the first perspective camera met in the node tree (depth first): eye at the
-//!   node's origin, looking down its −z with +y up, `yfov` in degrees; `aspectRatio` sets the
-//!   image to [`IMAGE_HEIGHT`] pixels high and as wide as the ratio says.
+//! - **Camera**: the first camera met in the node tree (depth first): eye at the node's
+//!   origin, looking down its −z with +y up; perspective (`yfov` in degrees) or orthographic
+//!   (`2·ymag` high); the aspect ratio sets the image to [`IMAGE_HEIGHT`] pixels high and as
+//!   wide as the ratio says.
+//! - **Morph targets** at the mesh's default weights; quantized attributes
+//!   (`KHR_mesh_quantization`).
 //!
-//! Not rendered (each gives a warning naming the file): orthographic cameras, skins, morph
-//! targets, animations, images embedded in the file, texture coordinates other than
-//! `TEXCOORD_0`, light `range`, extensions other than those above. Nodes whose
-//! world matrix is singular are skipped with a warning.
+//! Not rendered (each gives a warning naming the file): skins, a node's own morph weights,
+//! animations, light `range`, extensions other than those above. Nodes whose world matrix is
+//! singular are skipped with a warning.
 //!
 //! Safety: every URI naming a file goes through [`crate::paths::resolve`], so `--sandbox`
 //! holds; the glTF crate never opens a file by itself. Every length and index in the file is
@@ -143,7 +146,6 @@ pub fn import_gltf(
     let mut lights = Vec::new();
     let mut camera: Option<(CameraDesc, Option<f32>)> = None;
     let nodes: Vec<gltf::Node> = doc.nodes().collect();
-    let mut warned_meshes = HashSet::new();
     for &(i, world) in &placed {
         let node = &nodes[i];
         if let Some(mesh) = node.mesh() {
@@ -152,10 +154,10 @@ pub fn import_gltf(
                     "node {i}: its skin is not applied; the mesh is shown unposed"
                 ));
             }
-            let morphs = mesh.primitives().any(|p| p.morph_targets().len() > 0);
-            if morphs && warned_meshes.insert(mesh.index()) {
+            // Morph targets are posed at the mesh's default weights; a node's own differ.
+            if node.weights().is_some_and(|w| Some(w) != mesh.weights()) {
                 warn(format!(
-                    "mesh {}: morph targets are not applied",
+                    "node {i}: its morph weights are not applied; mesh {}'s default weights are",
                     mesh.index()
                 ));
             }
@@ -170,7 +172,7 @@ pub fn import_gltf(
                 // Primitives of the same accessors are one part: the build stores it once and
                 // places it as instances (a small file cannot multiply a large buffer).
                 let key = *same_geometry
-                    .entry(geometry(&prim, asset.uv_set(&prim)))
+                    .entry(geometry(&prim, asset.uv_set(&prim), weights(&mesh)))
                     .or_insert((mesh.index(), prim.index()));
                 let triangles = match decoded.get(&key) {
                     Some(&t) => t,
@@ -180,6 +182,7 @@ pub fn import_gltf(
                             key.0,
                             &prim,
                             asset.uv_set(&prim),
+                            weights(&mesh),
                         )
                         .map_err(|e| asset.error(e))?
                         {
@@ -301,9 +304,14 @@ pub fn import_gltf(
 
 /// What makes a primitive's triangles: its topology and where its accessors read — the same
 /// data through two accessors is the same geometry.
-type Geometry = (String, Option<String>, Vec<(String, String)>, u32);
+type Geometry = (String, Option<String>, Vec<(String, String)>, u32, Vec<u32>);
 
-fn geometry(prim: &gltf::Primitive, uv_set: u32) -> Geometry {
+/// The default weights of `mesh`'s morph targets (none: no morph targets are applied).
+fn weights<'a>(mesh: &gltf::Mesh<'a>) -> &'a [f32] {
+    mesh.weights().unwrap_or(&[])
+}
+
+fn geometry(prim: &gltf::Primitive, uv_set: u32, weights: &[f32]) -> Geometry {
     let source = |a: &gltf::Accessor| match (a.view(), a.sparse()) {
         (Some(view), None) => format!(
             "view {} +{} {}×{:?} {:?} {}",
@@ -321,12 +329,24 @@ fn geometry(prim: &gltf::Primitive, uv_set: u32) -> Geometry {
         .attributes()
         .map(|(semantic, accessor)| (format!("{semantic:?}"), source(&accessor)))
         .collect();
+    for (k, t) in prim.morph_targets().enumerate() {
+        for (what, a) in [
+            ("position", t.positions()),
+            ("normal", t.normals()),
+            ("tangent", t.tangents()),
+        ] {
+            if let Some(a) = a {
+                attributes.push((format!("target {k} {what}"), source(&a)));
+            }
+        }
+    }
     attributes.sort();
     (
         format!("{:?}", prim.mode()),
         prim.indices().map(|a| source(&a)),
         attributes,
         uv_set,
+        weights.iter().map(|w| w.to_bits()).collect(),
     )
 }
 
@@ -406,8 +426,14 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
                 mesh.primitives().len()
             ))
         })?;
-        return match primitive::decode(&asset.buffers, m, &prim, asset.uv_set(&prim))
-            .map_err(|e| asset.error(e))?
+        return match primitive::decode(
+            &asset.buffers,
+            m,
+            &prim,
+            asset.uv_set(&prim),
+            weights(&mesh),
+        )
+        .map_err(|e| asset.error(e))?
         {
             Decoded::Triangles(mesh, _) => Ok(mesh),
             Decoded::Skipped(why) => Err(asset.error(why)),
@@ -429,8 +455,14 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
             let mesh = match meshes.entry(key) {
                 Entry::Occupied(e) => e.into_mut(),
                 Entry::Vacant(e) => e.insert(
-                    match primitive::decode(&asset.buffers, key.0, &prim, asset.uv_set(&prim))
-                        .map_err(|e| asset.error(e))?
+                    match primitive::decode(
+                        &asset.buffers,
+                        key.0,
+                        &prim,
+                        asset.uv_set(&prim),
+                        weights(&mesh),
+                    )
+                    .map_err(|e| asset.error(e))?
                     {
                         Decoded::Triangles(m, _) => Some(m),
                         Decoded::Skipped(_) => None,

@@ -1060,3 +1060,43 @@ fn quantized_attributes_are_read_and_placed_by_their_node() {
         ]
     );
 }
+
+/// Morph targets are posed at the mesh's default weights (its `weights`), positions and normals.
+#[test]
+fn morph_targets_are_posed_at_the_mesh_s_default_weights() {
+    let dir = Dir::new("morph");
+    let mut a = Asset::default();
+    let position = a.positions(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let normal = a.floats(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0], 3);
+    let lift = a.floats(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0], 3);
+    let tilt = a.floats(&[1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0], 3);
+    let shift = a.floats(&[5.0, 0.0, 0.0, 5.0, 0.0, 0.0, 5.0, 0.0, 0.0], 3);
+    let rest = format!(
+        r#""meshes": [{{"primitives": [{{"attributes": {{"POSITION": {position}, "NORMAL": {normal}}},
+      "targets": [{{"POSITION": {lift}, "NORMAL": {tilt}}}, {{"POSITION": {shift}}}]}}],
+    "weights": [0.5, 0.0]}}],
+  "nodes": [{{"mesh": 0}}, {{"mesh": 0, "weights": [1.0, 1.0], "translation": [3, 0, 0]}}],
+  "scenes": [{{"nodes": [0, 1]}}]"#
+    );
+    let path = a.write_embedded(&dir, "morph.gltf", &rest);
+    let mesh = part(&path, "0/0");
+    // The first target at 0.5 lifts the third vertex by 1; the second, at 0, moves nothing.
+    assert_near(
+        &mesh.positions,
+        &[Vec3::ZERO, Vec3::X, Vec3::new(0.0, 2.0, 0.0)],
+    );
+    let tilted = Vec3::new(0.5, 0.0, 1.0).normalize();
+    assert!(
+        mesh.normals.iter().all(|n| (*n - tilted).length() < 1e-6),
+        "{:?}",
+        mesh.normals
+    );
+    // A node's own weights are not applied, with a warning naming it.
+    let imported = import_gltf(&path, &open(), &mut Fingerprint::default()).unwrap();
+    assert!(
+        imported.warnings.iter().any(|w| w
+            .contains("node 1: its morph weights are not applied; mesh 0's default weights are")),
+        "{:?}",
+        imported.warnings
+    );
+}

@@ -17,12 +17,14 @@ pub(super) enum Decoded {
 }
 
 /// Reads primitive `prim` of mesh `mesh`, with the texture coordinates of set `uv_set`
-/// (`TEXCOORD_n`: its material's, see `material::uv_set`). Errors name the mesh and primitive.
+/// (`TEXCOORD_n`: its material's, see `material::uv_set`), its morph targets added at
+/// `weights` (the mesh's default weights). Errors name the mesh and primitive.
 pub(super) fn decode(
     buffers: &[Vec<u8>],
     mesh: usize,
     prim: &gltf::Primitive,
     uv_set: u32,
+    weights: &[f32],
 ) -> Result<Decoded, String> {
     let label = format!("mesh {mesh} primitive {}", prim.index());
     let err = |e: String| format!("{label}: {e}");
@@ -38,7 +40,8 @@ pub(super) fn decode(
     let position = prim
         .get(&Semantic::Positions)
         .ok_or_else(|| err("has no POSITION attribute".into()))?;
-    let (flat, _) = read_floats(buffers, &position, &[3]).map_err(err)?;
+    let (mut flat, _) = read_floats(buffers, &position, &[3]).map_err(err)?;
+    morph(buffers, prim, weights, |t| t.positions(), &mut flat, 3).map_err(err)?;
     let positions: Vec<Vec3> = flat.chunks_exact(3).map(Vec3::from_slice).collect();
     if let Some((i, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
         return Err(err(format!("position {i} is not finite: {p}")));
@@ -87,10 +90,16 @@ pub(super) fn decode(
             }
         }
     };
-    let normals = optional(Semantic::Normals, &[3], "normals");
+    let mut normals = optional(Semantic::Normals, &[3], "normals");
     let uvs = optional(Semantic::TexCoords(uv_set), &[2], "texture coordinates");
     let colors = optional(Semantic::Colors(0), &[3, 4], "colours");
-    let tangents = optional(Semantic::Tangents, &[4], "tangents");
+    let mut tangents = optional(Semantic::Tangents, &[4], "tangents");
+    if let Some((v, w)) = &mut normals {
+        morph(buffers, prim, weights, |t| t.normals(), v, *w).map_err(err)?;
+    }
+    if let Some((v, w)) = &mut tangents {
+        morph(buffers, prim, weights, |t| t.tangents(), v, *w).map_err(err)?;
+    }
     if let Some((v, _)) = normals {
         // Shading normals must be unit vectors; the file's should be, but are normalised anyway.
         let unit: Option<Vec<Vec3>> = v
@@ -273,6 +282,38 @@ pub(super) fn merge(parts: &[(&Mesh, Mat4)]) -> Result<Mesh, String> {
     }
     out.validate()?;
     Ok(out)
+}
+
+/// Adds to `values` (flattened, `width` numbers a vertex, of which the first three move) the
+/// displacements of `prim`'s morph targets that `target` picks, each times its weight:
+/// glTF's pose at `weights`. A target whose count differs from the vertices' is refused.
+fn morph<'a>(
+    buffers: &[Vec<u8>],
+    prim: &gltf::Primitive<'a>,
+    weights: &[f32],
+    target: impl Fn(&gltf::mesh::MorphTarget<'a>) -> Option<gltf::Accessor<'a>>,
+    values: &mut [f32],
+    width: usize,
+) -> Result<(), String> {
+    for (k, (t, &w)) in prim.morph_targets().zip(weights).enumerate() {
+        let Some(a) = target(&t).filter(|_| w != 0.0 && w.is_finite()) else {
+            continue;
+        };
+        let (d, _) = read_floats(buffers, &a, &[3])?;
+        if d.len() / 3 != values.len() / width {
+            return Err(format!(
+                "morph target {k} moves {} vertices of {}",
+                d.len() / 3,
+                values.len() / width
+            ));
+        }
+        for (v, d) in values.chunks_exact_mut(width).zip(d.chunks_exact(3)) {
+            for c in 0..3 {
+                v[c] += w * d[c];
+            }
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
