@@ -35,10 +35,11 @@
 //!   origin, looking down its −z with +y up; perspective (`yfov` in degrees) or orthographic
 //!   (`2·ymag` high); the aspect ratio sets the image to [`IMAGE_HEIGHT`] pixels high and as
 //!   wide as the ratio says.
-//! - **Morph targets** at the mesh's default weights; quantized attributes
+//! - **Morph targets** at the mesh's default weights; **skins** posed by their joints as the
+//!   nodes place them (part `MESH/PRIMITIVE/SKIN`, in world space); quantized attributes
 //!   (`KHR_mesh_quantization`).
 //!
-//! Not rendered (each gives a warning naming the file): skins, a node's own morph weights,
+//! Not rendered (each gives a warning naming the file): a node's own morph weights,
 //! animations, light `range`, extensions other than those above. Nodes whose world matrix is
 //! singular are skipped with a warning.
 //!
@@ -51,6 +52,7 @@
 mod accessor;
 mod material;
 mod primitive;
+mod skin;
 mod source;
 
 use crate::desc::{
@@ -149,11 +151,22 @@ pub fn import_gltf(
     for &(i, world) in &placed {
         let node = &nodes[i];
         if let Some(mesh) = node.mesh() {
-            if node.skin().is_some() {
-                warn(format!(
-                    "node {i}: its skin is not applied; the mesh is shown unposed"
-                ));
-            }
+            // A skinned mesh is posed by its joints, in world space; one whose skin cannot be
+            // applied is shown unposed, placed by its node.
+            let skin = node.skin().filter(|s| {
+                let posed = mesh.primitives().try_for_each(|prim| {
+                    asset
+                        .primitive(&mesh, mesh.index(), &prim, Some(s))
+                        .map(|_| ())
+                });
+                if let Err(why) = &posed {
+                    warn(format!(
+                        "node {i}: its skin {} is not applied ({why}); the mesh is shown unposed",
+                        s.index()
+                    ));
+                }
+                posed.is_ok()
+            });
             // Morph targets are posed at the mesh's default weights; a node's own differ.
             if node.weights().is_some_and(|w| Some(w) != mesh.weights()) {
                 warn(format!(
@@ -214,8 +227,17 @@ pub fn import_gltf(
                 };
                 let mut o = ObjectDesc::new(ObjectKind::Mesh, material);
                 o.file = Some(Spanned::new(0..0, file_name.clone()));
-                o.part = Some(Spanned::new(0..0, format!("{}/{}", key.0, key.1)));
-                o.transform = Some(Spanned::new(0..0, Matrix(world)));
+                match &skin {
+                    // Posed in world space: the node's transform is not applied.
+                    Some(s) => {
+                        let part = format!("{}/{}/{}", key.0, key.1, s.index());
+                        o.part = Some(Spanned::new(0..0, part));
+                    }
+                    None => {
+                        o.part = Some(Spanned::new(0..0, format!("{}/{}", key.0, key.1)));
+                        o.transform = Some(Spanned::new(0..0, Matrix(world)));
+                    }
+                }
                 objects.push(Spanned::new(0..0, o));
             }
         }
@@ -406,14 +428,25 @@ impl GltfFile {
 fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
     let doc = &asset.doc;
     if let Some(part) = part {
-        let (m, p) = part
-            .split_once('/')
-            .and_then(|(m, p)| Some((m.trim().parse().ok()?, p.trim().parse().ok()?)))
-            .ok_or_else(|| {
+        let numbers: Option<Vec<usize>> = part.split('/').map(|n| n.trim().parse().ok()).collect();
+        let (m, p, s) = match numbers.as_deref() {
+            Some(&[m, p]) => (m, p, None),
+            Some(&[m, p, s]) => (m, p, Some(s)),
+            _ => {
+                return Err(asset.error(format!(
+                    "part `{part}` is not MESH/PRIMITIVE or MESH/PRIMITIVE/SKIN (indices, like `0/1`)"
+                )));
+            }
+        };
+        let skin = match s {
+            Some(s) => Some(doc.skins().nth(s).ok_or_else(|| {
                 asset.error(format!(
-                    "part `{part}` is not MESH/PRIMITIVE (two indices, like `0/1`)"
+                    "part `{part}`: there is no skin {s} (the file has {})",
+                    doc.skins().len()
                 ))
-            })?;
+            })?),
+            None => None,
+        };
         let mesh = doc.meshes().nth(m).ok_or_else(|| {
             asset.error(format!(
                 "part `{part}`: there is no mesh {m} (the file has {})",
@@ -426,14 +459,9 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
                 mesh.primitives().len()
             ))
         })?;
-        return match primitive::decode(
-            &asset.buffers,
-            m,
-            &prim,
-            asset.uv_set(&prim),
-            weights(&mesh),
-        )
-        .map_err(|e| asset.error(e))?
+        return match asset
+            .primitive(&mesh, m, &prim, skin.as_ref())
+            .map_err(|e| asset.error(e))?
         {
             Decoded::Triangles(mesh, _) => Ok(mesh),
             Decoded::Skipped(why) => Err(asset.error(why)),
@@ -441,7 +469,7 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
     }
     let (placed, _) = asset.placed_nodes();
     let nodes: Vec<gltf::Node> = doc.nodes().collect();
-    let mut meshes: HashMap<(usize, usize), Option<Mesh>> = HashMap::new();
+    let mut meshes: HashMap<(usize, usize, Option<usize>), Option<Mesh>> = HashMap::new();
     let mut parts = Vec::new();
     for &(i, world) in &placed {
         let Some(mesh) = nodes[i].mesh() else {
@@ -450,19 +478,29 @@ fn part_of(asset: &Asset, part: Option<&str>) -> Result<Mesh, LoadError> {
         if !primitive::placeable(&world) {
             continue; // as import_gltf does (with a warning there)
         }
+        // A skinned mesh is posed in world space (one whose skin fails is shown unposed,
+        // as import_gltf shows it).
+        let skin = nodes[i].skin().filter(|s| {
+            mesh.primitives()
+                .all(|prim| asset.primitive(&mesh, mesh.index(), &prim, Some(s)).is_ok())
+        });
+        let world = if skin.is_some() {
+            Mat4::IDENTITY
+        } else {
+            world
+        };
         for prim in mesh.primitives() {
-            let key = (mesh.index(), prim.index());
+            let key = (
+                mesh.index(),
+                prim.index(),
+                skin.as_ref().map(gltf::Skin::index),
+            );
             let mesh = match meshes.entry(key) {
                 Entry::Occupied(e) => e.into_mut(),
                 Entry::Vacant(e) => e.insert(
-                    match primitive::decode(
-                        &asset.buffers,
-                        key.0,
-                        &prim,
-                        asset.uv_set(&prim),
-                        weights(&mesh),
-                    )
-                    .map_err(|e| asset.error(e))?
+                    match asset
+                        .primitive(&mesh, key.0, &prim, skin.as_ref())
+                        .map_err(|e| asset.error(e))?
                     {
                         Decoded::Triangles(m, _) => Some(m),
                         Decoded::Skipped(_) => None,
@@ -493,6 +531,8 @@ struct Asset {
     buffers: Vec<Vec<u8>>,
     /// The texture coordinate set each material's primitives keep (`material::uv_set`).
     uv_sets: Vec<u32>,
+    /// Every node's world matrix, where skins find their joints.
+    worlds: Vec<Mat4>,
 }
 
 impl Asset {
@@ -555,17 +595,40 @@ impl Asset {
         let uv_sets = (0..root.materials.len())
             .map(|i| material::uv_set(root, Some(i)))
             .collect();
+        let worlds = skin::node_worlds(&doc, |n| local_matrix(n.transform()));
         Ok(Self {
             path: path.to_path_buf(),
             base_dir,
             doc,
             buffers,
             uv_sets,
+            worlds,
         })
     }
 
     fn error(&self, message: impl Into<String>) -> LoadError {
         LoadError::file(&self.path, message)
+    }
+
+    /// Primitive `prim` of `mesh` (numbered `label` in messages) as [`primitive::decode`]
+    /// reads it, posed by `skin` when given.
+    fn primitive(
+        &self,
+        mesh: &gltf::Mesh,
+        label: usize,
+        prim: &gltf::Primitive,
+        skin: Option<&gltf::Skin>,
+    ) -> Result<Decoded, String> {
+        let decoded =
+            primitive::decode(&self.buffers, label, prim, self.uv_set(prim), weights(mesh))?;
+        match (decoded, skin) {
+            (Decoded::Triangles(mut m, notes), Some(s)) => {
+                skin::pose(&self.buffers, prim, s, &self.worlds, &mut m)
+                    .map_err(|e| format!("mesh {label} primitive {}: {e}", prim.index()))?;
+                Ok(Decoded::Triangles(m, notes))
+            }
+            (decoded, _) => Ok(decoded),
+        }
     }
 
     /// The texture coordinate set `prim` keeps: its material's (0 without one).

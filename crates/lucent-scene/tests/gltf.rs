@@ -1100,3 +1100,62 @@ fn morph_targets_are_posed_at_the_mesh_s_default_weights() {
         imported.warnings
     );
 }
+
+/// A skinned mesh is posed by its joints as the nodes place them, in world space: its own
+/// node's transform is not applied (glTF 2.0 §3.7.3).
+#[test]
+fn skins_pose_their_meshes_by_their_joints() {
+    let dir = Dir::new("skin");
+    let mut a = Asset::default();
+    let position = a.positions(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    // Vertices 0 and 1 follow joint 0 (at rest), vertex 2 half joint 0, half joint 1.
+    let joints = a.accessor(&[0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0], U8, 3, "VEC4", "");
+    let weights = a.floats(
+        &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0],
+        4,
+    );
+    // Inverse bind matrices: identity for joint 0; joint 1 bound at y = 1 (its inverse moves
+    // down by 1), so that at rest, placed at y = 1, it moves nothing.
+    let mut ibm: Vec<f32> = Mat4::IDENTITY.to_cols_array().to_vec();
+    ibm.extend(Mat4::from_translation(Vec3::new(0.0, -1.0, 0.0)).to_cols_array());
+    let bytes: Vec<u8> = ibm.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let inverse_binds = a.accessor(&bytes, FLOAT, 2, "MAT4", "");
+    let rest = format!(
+        r#""meshes": [{{"primitives": [{{"attributes": {{"POSITION": {position}, "JOINTS_0": {joints}, "WEIGHTS_0": {weights}}}}}]}}],
+  "skins": [{{"joints": [1, 2], "inverseBindMatrices": {inverse_binds}}}],
+  "nodes": [{{"mesh": 0, "skin": 0, "translation": [100, 0, 0]}},
+            {{"children": [2]}},
+            {{"translation": [0, 1, 4]}}],
+  "scenes": [{{"nodes": [0, 1]}}]"#
+    );
+    let path = a.write_embedded(&dir, "skin.gltf", &rest);
+    // Joint 1 stands 4 along z from where it was bound: vertex 2 moves half of that.
+    let expected = [Vec3::ZERO, Vec3::X, Vec3::new(0.0, 1.0, 2.0)];
+    assert_near(&part(&path, "0/0/0").positions, &expected);
+    assert_near(&whole(&path).positions, &expected);
+    let imported = import_gltf(&path, &open(), &mut Fingerprint::default()).unwrap();
+    let o = imported.desc.objects[0].get_ref();
+    assert_eq!(o.part.as_ref().unwrap().get_ref(), "0/0/0");
+    assert!(o.transform.is_none(), "posed in world space");
+    assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+
+    // Without WEIGHTS_0 the skin cannot be applied: the mesh is shown unposed, with a warning.
+    let broken = rest.replace(&format!(r#", "WEIGHTS_0": {weights}"#), "");
+    let path = a.write_embedded(&dir, "unweighted.gltf", &broken);
+    let imported = import_gltf(&path, &open(), &mut Fingerprint::default()).unwrap();
+    assert!(
+        imported.warnings.iter().any(|w| w
+            .contains("node 0: its skin 0 is not applied (mesh 0 primitive 0: it is skinned but has no WEIGHTS_0); the mesh is shown unposed")),
+        "{:?}",
+        imported.warnings
+    );
+    assert_eq!(
+        imported.desc.objects[0]
+            .get_ref()
+            .part
+            .as_ref()
+            .unwrap()
+            .get_ref(),
+        "0/0"
+    );
+}

@@ -216,6 +216,42 @@ fn read_with<T: Copy + Default>(
     Ok(out)
 }
 
+/// The 4×4 float matrices of accessor `a` (column by column, as glTF stores them): skins'
+/// inverse bind matrices. Other component types and sparse matrices are refused.
+pub(super) fn read_matrices(
+    buffers: &[Vec<u8>],
+    a: &gltf::Accessor,
+) -> Result<Vec<glam::Mat4>, String> {
+    let what = format!("accessor {}", a.index());
+    if a.dimensions() != Dimensions::Mat4 || a.data_type() != DataType::F32 {
+        return Err(format!("{what} holds no float 4×4 matrices"));
+    }
+    if a.sparse().is_some() {
+        return Err(format!("{what}: sparse matrices are not read"));
+    }
+    let view = a
+        .view()
+        .ok_or_else(|| format!("{what} holds matrices without a buffer view"))?;
+    let bytes = view_bytes(buffers, &view)?;
+    let element = 64;
+    let stride = view.stride().unwrap_or(element).max(element);
+    check_fits(&what, a.count(), element, stride, a.offset(), bytes.len())?;
+    let matrices: Vec<glam::Mat4> = (0..a.count())
+        .map(|i| {
+            let start = a.offset() + i * stride;
+            let mut cols = [0.0f32; 16];
+            for (k, c) in bytes[start..start + element].chunks_exact(4).enumerate() {
+                cols[k] = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
+            }
+            glam::Mat4::from_cols_array(&cols)
+        })
+        .collect();
+    if matrices.iter().any(|m| !m.is_finite()) {
+        return Err(format!("{what} holds a matrix that is not finite"));
+    }
+    Ok(matrices)
+}
+
 /// The elements of `a` as floats, flattened; `widths` lists the vector sizes accepted.
 pub(super) fn read_floats(
     buffers: &[Vec<u8>],
