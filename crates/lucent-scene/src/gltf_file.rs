@@ -50,6 +50,7 @@
 //! 2^28 triangles.
 
 mod accessor;
+mod draco;
 mod material;
 mod primitive;
 mod skin;
@@ -86,9 +87,10 @@ pub const IMAGE_HEIGHT: u32 = 600;
 
 /// The extensions read (others listed in `extensionsUsed` give a warning; others listed in
 /// `extensionsRequired` make the file unreadable).
-const SUPPORTED_EXTENSIONS: [&str; 12] = [
+const SUPPORTED_EXTENSIONS: [&str; 13] = [
     "KHR_lights_punctual",
     "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression",
     "KHR_materials_transmission",
     "KHR_materials_ior",
     "KHR_materials_emissive_strength",
@@ -619,8 +621,12 @@ impl Asset {
         prim: &gltf::Primitive,
         skin: Option<&gltf::Skin>,
     ) -> Result<Decoded, String> {
-        let decoded =
-            primitive::decode(&self.buffers, label, prim, self.uv_set(prim), weights(mesh))?;
+        let decoded = match prim.extension_value("KHR_draco_mesh_compression") {
+            Some(ext) => self.draco(label, prim, ext)?,
+            None => {
+                primitive::decode(&self.buffers, label, prim, self.uv_set(prim), weights(mesh))?
+            }
+        };
         match (decoded, skin) {
             (Decoded::Triangles(mut m, notes), Some(s)) => {
                 skin::pose(&self.buffers, prim, s, &self.worlds, &mut m)
@@ -629,6 +635,36 @@ impl Asset {
             }
             (decoded, _) => Ok(decoded),
         }
+    }
+
+    /// Primitive `prim` of mesh `label`, compressed by `KHR_draco_mesh_compression` (its
+    /// JSON `ext`): the Draco stream in the buffer view the extension names.
+    fn draco(
+        &self,
+        label: usize,
+        prim: &gltf::Primitive,
+        ext: &serde_json::Value,
+    ) -> Result<Decoded, String> {
+        let what = format!("mesh {label} primitive {}", prim.index());
+        let view = ext
+            .get("bufferView")
+            .and_then(serde_json::Value::as_u64)
+            .and_then(|v| self.doc.views().nth(v as usize))
+            .ok_or_else(|| {
+                format!("{what}: its KHR_draco_mesh_compression names no buffer view of the file")
+            })?;
+        let bytes =
+            accessor::view_bytes(&self.buffers, &view).map_err(|e| format!("{what}: {e}"))?;
+        let attributes = ext.get("attributes").unwrap_or(&serde_json::Value::Null);
+        let mesh = draco::decode(bytes, attributes, self.uv_set(prim))
+            .map_err(|e| format!("{what}: {e}"))?;
+        let mut notes = Vec::new();
+        if prim.morph_targets().len() > 0 {
+            notes.push(format!(
+                "{what}: its morph targets are not applied (Draco-compressed targets are not read)"
+            ));
+        }
+        Ok(Decoded::Triangles(mesh, notes))
     }
 
     /// The texture coordinate set `prim` keeps: its material's (0 without one).
@@ -751,26 +787,42 @@ fn parse_document(json: &[u8], path: &Path, text: bool) -> Result<gltf::Document
     root.extensions_required
         .retain(|e| gltf::json::extensions::ENABLED_EXTENSIONS.contains(&e.as_str()));
     forgive_positions(&mut root).map_err(|e| LoadError::file(path, e))?;
-    gltf::Document::from_json(root).map_err(|e| {
-        let message = match e {
-            gltf::Error::Validation(errors) => {
-                let shown: Vec<String> = errors
-                    .iter()
-                    .take(3)
-                    .map(|(at, what)| format!("{at}: {what}"))
-                    .collect();
-                let more = errors.len().saturating_sub(3);
-                let more = if more > 0 {
-                    format!(" (and {more} more)")
-                } else {
-                    String::new()
-                };
-                format!("the glTF document is invalid: {}{more}", shown.join("; "))
-            }
-            other => format!("the glTF document is invalid: {other}"),
-        };
-        LoadError::file(path, message)
-    })
+    // The specification lets an accessor have neither a buffer view nor sparse values (its
+    // elements are zeros; a Draco primitive's accessors are such), which the crate's
+    // validation refuses: a copy with a placeholder view is validated, and the document kept
+    // as written.
+    let viewless = |a: &gltf::json::Accessor| a.buffer_view.is_none() && a.sparse.is_none();
+    if !root.buffer_views.is_empty() && root.accessors.iter().any(viewless) {
+        let mut check = root.clone();
+        for a in check.accessors.iter_mut().filter(|a| viewless(a)) {
+            a.buffer_view = Some(gltf::json::Index::new(0));
+        }
+        gltf::Document::from_json(check).map_err(|e| invalid(path, e))?;
+        return Ok(gltf::Document::from_json_without_validation(root));
+    }
+    gltf::Document::from_json(root).map_err(|e| invalid(path, e))
+}
+
+/// The error of a glTF document the crate's validation refuses: its first three problems.
+fn invalid(path: &Path, e: gltf::Error) -> LoadError {
+    let message = match e {
+        gltf::Error::Validation(errors) => {
+            let shown: Vec<String> = errors
+                .iter()
+                .take(3)
+                .map(|(at, what)| format!("{at}: {what}"))
+                .collect();
+            let more = errors.len().saturating_sub(3);
+            let more = if more > 0 {
+                format!(" (and {more} more)")
+            } else {
+                String::new()
+            };
+            format!("the glTF document is invalid: {}{more}", shown.join("; "))
+        }
+        other => format!("the glTF document is invalid: {other}"),
+    };
+    LoadError::file(path, message)
 }
 
 /// Prepares `root` for the glTF crate's validation: refuses a POSITION attribute naming an

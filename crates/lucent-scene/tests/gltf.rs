@@ -1159,3 +1159,34 @@ fn skins_pose_their_meshes_by_their_joints() {
         "0/0"
     );
 }
+
+/// `KHR_draco_mesh_compression`: a sphere compressed by Google's Draco encoder (through DracoPy,
+/// `bench/peers/draco.py`) decodes to the same triangles as its plain copy in the same file, its
+/// positions within the 14-bit quantization's half step.
+#[test]
+fn draco_compressed_primitives_decode_to_their_plain_copies() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/draco-sphere.gltf");
+    let (draco, plain) = (part(&path, "0/0"), part(&path, "1/0"));
+    assert_eq!(draco.triangles, plain.triangles);
+    assert_eq!(draco.positions.len(), plain.positions.len());
+    let half_step = 2.0 / ((1 << 14) - 1) as f32 / 2.0;
+    for (a, b) in draco.positions.iter().zip(&plain.positions) {
+        assert!(
+            (*a - *b).abs().max_element() <= half_step * 1.01,
+            "{a} vs {b}"
+        );
+    }
+    // A stream cut short is refused with a message, not a panic.
+    let text = std::fs::read_to_string(&path).unwrap();
+    let dir = Dir::new("draco");
+    let cut = dir.path("cut.gltf");
+    let shortened = text.replacen(r#""byteLength": 520"#, r#""byteLength": 100"#, 1);
+    assert_ne!(shortened, text, "the Draco view's length is in the file");
+    std::fs::write(&cut, shortened).unwrap();
+    let e = read_gltf_part(&cut, Some("0/0"), &open(), &mut Fingerprint::default()).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("mesh 0 primitive 0: its Draco stream cannot be decoded"),
+        "{e}"
+    );
+}

@@ -442,12 +442,12 @@ fn documents_are_checked_before_the_crate_sees_them() {
     assert_eq!(e.position, Some((4, 1)), "{e}");
     assert!(e.message.starts_with("not valid glTF JSON: "), "{e}");
     let e = parse(
-        r#"{"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_draco_mesh_compression"], "extensionsUsed": ["KHR_draco_mesh_compression"]}"#,
+        r#"{"asset": {"version": "2.0"}, "extensionsRequired": ["EXT_meshopt_compression"], "extensionsUsed": ["EXT_meshopt_compression"]}"#,
     )
     .unwrap_err();
     assert_eq!(
         e.to_string(),
-        "t.gltf: the file requires extension KHR_draco_mesh_compression, which is not supported"
+        "t.gltf: the file requires extension EXT_meshopt_compression, which is not supported"
     );
     // The crate's validation would index out of bounds here.
     let e = parse(
