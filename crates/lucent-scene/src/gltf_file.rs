@@ -87,7 +87,7 @@ pub const IMAGE_HEIGHT: u32 = 600;
 
 /// The extensions read (others listed in `extensionsUsed` give a warning; others listed in
 /// `extensionsRequired` make the file unreadable).
-const SUPPORTED_EXTENSIONS: [&str; 13] = [
+const SUPPORTED_EXTENSIONS: [&str; 15] = [
     "KHR_lights_punctual",
     "KHR_mesh_quantization",
     "KHR_draco_mesh_compression",
@@ -100,6 +100,8 @@ const SUPPORTED_EXTENSIONS: [&str; 13] = [
     "KHR_materials_sheen",
     "KHR_materials_anisotropy",
     "KHR_materials_iridescence",
+    "KHR_materials_diffuse_transmission",
+    "KHR_materials_unlit",
     "KHR_texture_transform",
 ];
 

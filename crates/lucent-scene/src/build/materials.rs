@@ -36,6 +36,7 @@ const COMMON: &[&str] = &[
     "back",
     "vertex_colors",
     "cull_back",
+    "emits_back",
 ];
 
 /// The keys of each kind besides [`COMMON`].
@@ -115,6 +116,9 @@ fn takes(kind: MaterialKind) -> &'static [&'static str] {
             "sheen_roughness",
             "anisotropy",
             "anisotropy_rotation",
+            "anisotropy_direction",
+            "diffuse_transmission",
+            "diffuse_transmission_color",
             "iridescence",
             "iridescence_ior",
             "iridescence_thickness",
@@ -178,6 +182,12 @@ impl<'d> Materials<'d> {
         material.two_sided = d.two_sided.unwrap_or(true);
         material.vertex_colors = d.vertex_colors.unwrap_or(true);
         material.cull_back = d.cull_back.unwrap_or(false);
+        material.emits_back = d.emits_back.unwrap_or(false);
+        // Area lights emit from their fronts: a two-sided emission is found only by the rays
+        // that hit it, as a textured one is.
+        if material.emits_back && material.emission_map.is_none() {
+            material.emission_map = Some(Texture::from(1.0));
+        }
         Ok((material, approx))
     }
 
@@ -335,6 +345,12 @@ fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(), LoadError>
         ("sheen_roughness", span(&d.sheen_roughness)),
         ("anisotropy", span(&d.anisotropy)),
         ("anisotropy_rotation", span(&d.anisotropy_rotation)),
+        ("anisotropy_direction", span(&d.anisotropy_direction)),
+        ("diffuse_transmission", span(&d.diffuse_transmission)),
+        (
+            "diffuse_transmission_color",
+            at(d.diffuse_transmission_color.is_some()),
+        ),
         ("iridescence", span(&d.iridescence)),
         ("iridescence_ior", span(&d.iridescence_ior)),
         ("iridescence_thickness", span(&d.iridescence_thickness)),
@@ -695,6 +711,18 @@ fn pbr(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<GltfMaps, LoadErr
             .anisotropy_rotation
             .as_ref()
             .map_or(0.0, |r| r.get_ref().0.to_radians()),
+        anisotropy_direction: match &d.anisotropy_direction {
+            Some(t) => Some(ctx.texture(t.get_ref(), t.span(), Slot::Data)?),
+            None => None,
+        },
+        diffuse_transmission: bounded(
+            ctx,
+            &d.diffuse_transmission,
+            "diffuse_transmission",
+            1.0,
+            0.0,
+        )?,
+        diffuse_transmission_color: color(ctx, &table, &d.diffuse_transmission_color, 1.0)?,
         iridescence: bounded(ctx, &d.iridescence, "iridescence", 1.0, 0.0)?,
         iridescence_ior: index_of_refraction(ctx, &d.iridescence_ior, "iridescence_ior", 1.3)?,
         // Nanometres; the renderer keeps whole ones in 16 bits (`GltfPbr::film_thickness`).

@@ -44,8 +44,9 @@ pub enum MaterialKind {
     /// glTF 2.0's metallic-roughness material: `base_color`, `metallic`, `roughness`, `ior`,
     /// `specular`, `specular_color`, `transmission`, `volume`, `clearcoat`,
     /// `clearcoat_roughness`, `clearcoat_normal_map`, `clearcoat_normal_scale`, `sheen_color`,
-    /// `sheen_roughness`, `anisotropy`, `anisotropy_rotation`, `iridescence`,
-    /// `iridescence_ior`, `iridescence_thickness`.
+    /// `sheen_roughness`, `anisotropy`, `anisotropy_rotation`, `anisotropy_direction`,
+    /// `iridescence`, `iridescence_ior`, `iridescence_thickness`, `diffuse_transmission`,
+    /// `diffuse_transmission_color`.
     Pbr,
 }
 
@@ -240,6 +241,16 @@ pub struct MaterialDesc {
     /// glTF's anisotropy direction, degrees from the tangent towards the bitangent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub anisotropy_rotation: Option<Spanned<Finite>>,
+    /// glTF's anisotropy direction map: red and green (linear) give the direction
+    /// `2·(r, g) − 1` in the tangent frame, turned by `anisotropy_rotation`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anisotropy_direction: Option<Spanned<TextureDesc>>,
+    /// glTF's diffuse transmission (`KHR_materials_diffuse_transmission`), in `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_transmission: Option<Spanned<TextureDesc>>,
+    /// The colour of the diffusely transmitted light (default white).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_transmission_color: Option<TextureDesc>,
     /// glTF's thin-film weight (`KHR_materials_iridescence`), in `[0, 1]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub iridescence: Option<Spanned<TextureDesc>>,
@@ -263,6 +274,10 @@ pub struct MaterialDesc {
     /// (default false; glTF's single-sided materials).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cull_back: Option<bool>,
+    /// Whether the `emission` leaves the back as well as the front (default false; glTF's
+    /// unlit two-sided materials). Such a surface is not sampled as a light.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub emits_back: Option<bool>,
 }
 
 impl MaterialDesc {
@@ -319,6 +334,9 @@ impl MaterialDesc {
             sheen_roughness: None,
             anisotropy: None,
             anisotropy_rotation: None,
+            anisotropy_direction: None,
+            diffuse_transmission: None,
+            diffuse_transmission_color: None,
             iridescence: None,
             iridescence_ior: None,
             iridescence_thickness: None,
@@ -326,6 +344,7 @@ impl MaterialDesc {
             back: None,
             vertex_colors: None,
             cull_back: None,
+            emits_back: None,
         }
     }
 
@@ -357,6 +376,7 @@ impl MaterialDesc {
             &mut self.base_color,
             &mut self.specular_color,
             &mut self.sheen_color,
+            &mut self.diffuse_transmission_color,
         ];
         let spanned = [
             &mut self.roughness,
@@ -381,6 +401,8 @@ impl MaterialDesc {
             &mut self.clearcoat_normal_map,
             &mut self.sheen_roughness,
             &mut self.anisotropy,
+            &mut self.anisotropy_direction,
+            &mut self.diffuse_transmission,
             &mut self.iridescence,
             &mut self.iridescence_thickness,
         ];

@@ -10,7 +10,9 @@
 //! | `alphaMode` `MASK` (`alphaCutoff`) / `BLEND`: base colour alpha × texture alpha | `opacity`: a `step` at the cutoff / the alpha itself |
 //! | `doubleSided` | `two_sided` |
 //! | `KHR_materials_ior`, `_specular`, `_transmission`, `_volume` (a thickness: refracting) | `ior`, `specular`, `specular_color`, `transmission`, `volume` |
-//! | `KHR_materials_clearcoat`, `_sheen`, `_anisotropy` (strength, rotation) | `clearcoat`, `clearcoat_roughness`, `clearcoat_normal_map`; `sheen_color`, `sheen_roughness`; `anisotropy`, `anisotropy_rotation` |
+//! | `KHR_materials_clearcoat`, `_sheen`, `_anisotropy` | `clearcoat`, `clearcoat_roughness`, `clearcoat_normal_map`; `sheen_color`, `sheen_roughness`; `anisotropy`, `anisotropy_rotation`, `anisotropy_direction` |
+//! | `KHR_materials_diffuse_transmission`: factor × alpha, colour × texture | `diffuse_transmission`, `diffuse_transmission_color` |
+//! | `KHR_materials_unlit` | `diffuse` black with `emission` = base colour × vertex colour (`emits_back` when double-sided) |
 //! | `KHR_materials_iridescence`: `iridescenceFactor` × red of `iridescenceTexture`, `iridescenceIor`, thickness `mix(iridescenceThicknessMinimum, iridescenceThicknessMaximum, green of iridescenceThicknessTexture)` (the maximum without the texture) | `iridescence`, `iridescence_ior`, `iridescence_thickness` (a `mix` of the two numbers by the texture) |
 //! | a sampler's `wrapS`/`wrapT`, `magFilter` `NEAREST`; `KHR_texture_transform` | an image's `wrap`, `filter`; its `scale`, `rotation`, `offset` |
 //!
@@ -19,8 +21,9 @@
 //!
 //! A primitive keeps the coordinate set most of its material's textures read ([`uv_set`]).
 //!
-//! Not read (each a note naming the material): a texture reading another coordinate set, `KHR_materials_volume`'s attenuation,
-//! `KHR_materials_anisotropy`'s direction texture, unlit and specular-glossiness materials.
+//! Not read (each a note naming the material): a texture reading another coordinate set,
+//! `KHR_materials_volume`'s attenuation, `KHR_materials_dispersion`, specular-glossiness
+//! materials.
 //! `occlusionTexture` is a rasteriser's stand-in for the shadowing a path tracer computes, and
 //! is left out on purpose.
 
@@ -354,7 +357,10 @@ pub(super) fn describe(
     d.two_sided = Some(m.double_sided());
     // A single-sided material's back faces are culled (glTF 2.0 §3.9.5), unless light goes
     // through it: a transmitting surface is met from behind by the light inside it.
-    if !m.double_sided() && m.transmission().is_none() && m.volume().is_none() {
+    let translucent = m
+        .extension_value("KHR_materials_diffuse_transmission")
+        .is_some();
+    if !m.double_sided() && m.transmission().is_none() && m.volume().is_none() && !translucent {
         d.cull_back = Some(true);
     }
     let pbr = m.pbr_metallic_roughness();
@@ -414,8 +420,31 @@ pub(super) fn describe(
         d.emission = Some(emission);
     }
     alpha_mode(&mut r, m, alpha, base_slot, &mut d)?;
+    if m.extension_value("KHR_materials_unlit").is_some() {
+        return Ok((unlit(d, m.double_sided()), r.notes));
+    }
     extensions(&mut r, m, &mut d)?;
     Ok((d, r.notes))
+}
+
+/// `KHR_materials_unlit`: the base colour (times the vertex colours) shown whatever the light,
+/// as an emission that nothing else reflects, from both sides when the material is
+/// double-sided. The lighting parameters of the rest of the material are dropped; its alpha
+/// and culling are kept.
+fn unlit(pbr: MaterialDesc, double_sided: bool) -> MaterialDesc {
+    let mut d = MaterialDesc::named(pbr.name.get_ref());
+    d.kind = Some(spanned(MaterialKind::Diffuse));
+    d.reflectance = Some(TextureDesc::gray(0.0));
+    let base = pbr.base_color.unwrap_or(TextureDesc::gray(1.0));
+    d.emission = Some(TextureDesc::Product(
+        Box::new(base),
+        Box::new(TextureDesc::VertexColor),
+    ));
+    d.emits_back = double_sided.then_some(true);
+    d.two_sided = pbr.two_sided;
+    d.cull_back = pbr.cull_back;
+    d.opacity = pbr.opacity;
+    d
 }
 
 /// `MASK` and `BLEND`: the base colour's alpha (factor times texture) as the opacity.
@@ -589,17 +618,20 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
     }
     if let Some(a) = m.extension_value("KHR_materials_anisotropy") {
         let slot = Slot::of_json(a.get("anisotropyTexture"));
-        if slot.is_some() {
-            r.note("anisotropyTexture's direction is not read; its strength (blue) is, and anisotropyRotation");
-        }
         let strength = r.scaled(
             Rgb::gray(number(a, "anisotropyStrength", 0.0).clamp(0.0, 1.0)),
-            slot,
+            slot.clone(),
             "anisotropyTexture",
             Encoding::Linear,
             Channel::B,
         )?;
         d.anisotropy = unless_default(strength, 0.0);
+        // Its red and green channels turn the direction, where there is anisotropy at all.
+        if let Some(slot) = slot.filter(|_| d.anisotropy.is_some()) {
+            d.anisotropy_direction = r
+                .image(&slot, "anisotropyTexture", Encoding::Linear, Channel::Rgb)?
+                .map(spanned);
+        }
         let rotation = number(a, "anisotropyRotation", 0.0);
         if rotation != 0.0 && rotation.is_finite() {
             d.anisotropy_rotation = Some(spanned(Finite(rotation.to_degrees())));
@@ -608,14 +640,32 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
     if let Some(i) = m.extension_value("KHR_materials_iridescence") {
         iridescence(r, i, d)?;
     }
+    if let Some(t) = m.extension_value("KHR_materials_diffuse_transmission") {
+        d.diffuse_transmission = r.unit_factor(
+            t,
+            "diffuseTransmissionFactor",
+            "diffuseTransmissionTexture",
+            Channel::A,
+        )?;
+        if d.diffuse_transmission.is_some() {
+            let color = r.scaled(
+                color_of(t, "diffuseTransmissionColorFactor", Rgb::WHITE),
+                Slot::of_json(t.get("diffuseTransmissionColorTexture")),
+                "diffuseTransmissionColorTexture",
+                Encoding::Srgb,
+                Channel::Rgb,
+            )?;
+            if color != TextureDesc::gray(1.0) {
+                d.diffuse_transmission_color = Some(color);
+            }
+        }
+    }
     for (ext, what) in [
-        ("KHR_materials_unlit", "an unlit material (it is shaded)"),
         (
             "KHR_materials_pbrSpecularGlossiness",
             "a specular-glossiness material (its metallic-roughness fallback is used)",
         ),
         ("KHR_materials_dispersion", "dispersion"),
-        ("KHR_materials_diffuse_transmission", "diffuse transmission"),
     ] {
         if m.extension_value(ext).is_some() {
             r.note(format!("{ext}: {what} is not rendered"));

@@ -241,6 +241,89 @@ fn materials_become_gltf_pbr_with_every_texture_and_layer() {
     );
 }
 
+const MORE_MATERIALS: &str = r#"{
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_materials_anisotropy", "KHR_materials_diffuse_transmission", "KHR_materials_unlit"],
+  "images": [{"uri": "aniso.png"}, {"uri": "leaf.png"}, {"uri": "tint.png"}],
+  "textures": [{"source": 0}, {"source": 1}, {"source": 2}],
+  "materials": [
+    {"name": "Brushed", "extensions": {"KHR_materials_anisotropy": {
+        "anisotropyStrength": 0.6, "anisotropyRotation": 1.5707963, "anisotropyTexture": {"index": 0}}}},
+    {"name": "Leaf", "pbrMetallicRoughness": {"metallicFactor": 0},
+     "extensions": {"KHR_materials_diffuse_transmission": {
+        "diffuseTransmissionFactor": 0.5, "diffuseTransmissionTexture": {"index": 1},
+        "diffuseTransmissionColorFactor": [0.5, 1, 0.25], "diffuseTransmissionColorTexture": {"index": 2}}}},
+    {"name": "Flat", "doubleSided": true, "alphaMode": "MASK",
+     "pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 0.2], "metallicFactor": 0},
+     "extensions": {"KHR_materials_unlit": {}}},
+    {"name": "Decal", "pbrMetallicRoughness": {"baseColorTexture": {"index": 1}},
+     "extensions": {"KHR_materials_unlit": {}}}
+  ]
+}"#;
+
+#[test]
+fn anisotropy_directions_diffuse_transmission_and_unlit_are_read() {
+    let m = described(MORE_MATERIALS);
+    // The anisotropy's strength is the blue channel; its direction the red and green ones.
+    let (brushed, notes) = &m[0];
+    assert!(notes.is_empty(), "{notes:?}");
+    let strength = brushed.anisotropy.as_ref().unwrap().get_ref();
+    assert!(matches!(strength, TextureDesc::Product(f, _) if **f == TextureDesc::gray(0.6)));
+    assert_eq!(image(strength).channel, Some(Channel::B));
+    let direction = image(brushed.anisotropy_direction.as_ref().unwrap().get_ref());
+    assert_eq!(
+        (
+            direction.file.as_str(),
+            direction.channel,
+            direction.encoding
+        ),
+        ("aniso.png", None, Some(Encoding::Linear))
+    );
+    assert!((brushed.anisotropy_rotation.as_ref().unwrap().get_ref().0 - 90.0).abs() < 1e-4);
+
+    // Diffuse transmission: the factor times the alpha channel, the colour times an sRGB
+    // image; a translucent single-sided surface is not culled (light comes through its back).
+    let (leaf, notes) = &m[1];
+    assert!(notes.is_empty(), "{notes:?}");
+    let share = leaf.diffuse_transmission.as_ref().unwrap().get_ref();
+    assert!(matches!(share, TextureDesc::Product(f, _) if **f == TextureDesc::gray(0.5)));
+    assert_eq!(
+        (image(share).file.as_str(), image(share).channel),
+        ("leaf.png", Some(Channel::A))
+    );
+    let tint = leaf.diffuse_transmission_color.as_ref().unwrap();
+    assert!(
+        matches!(tint, TextureDesc::Product(f, _) if **f == TextureDesc::Solid(Rgb::new(0.5, 1.0, 0.25)))
+    );
+    assert_eq!(image(tint).encoding, Some(Encoding::Srgb));
+    assert_eq!(leaf.cull_back, None);
+
+    // Unlit: a black diffuse surface emitting its base colour times the vertex colours, from
+    // both sides when double-sided; the alpha still cuts it out.
+    let (flat, notes) = &m[2];
+    assert!(notes.is_empty(), "{notes:?}");
+    assert_eq!(flat.kind(), MaterialKind::Diffuse);
+    assert_eq!(flat.reflectance, Some(TextureDesc::gray(0.0)));
+    assert_eq!(
+        flat.emission,
+        Some(TextureDesc::Product(
+            Box::new(TextureDesc::Solid(Rgb::new(1.0, 0.5, 0.25))),
+            Box::new(TextureDesc::VertexColor)
+        ))
+    );
+    assert_eq!(flat.emits_back, Some(true));
+    assert_eq!(
+        flat.opacity.as_ref().map(|o| o.get_ref().clone()),
+        Some(TextureDesc::gray(0.0))
+    );
+    let (decal, _) = &m[3];
+    match decal.emission.as_ref() {
+        Some(TextureDesc::Product(base, _)) => assert_eq!(image(base).file, "leaf.png"),
+        other => panic!("the base colour texture as the emission, got {other:?}"),
+    }
+    assert_eq!((decal.emits_back, decal.cull_back), (None, Some(true)));
+}
+
 #[test]
 fn the_default_material_name_stays_unique() {
     let doc = parse_document(

@@ -71,6 +71,12 @@ pub struct GltfPbr {
     /// Whether transmitted light refracts (`KHR_materials_volume` with a thickness) or passes
     /// a thin wall unbent.
     pub volume: bool,
+    /// `KHR_materials_diffuse_transmission`: the share of the diffuse lobe that passes through
+    /// the surface, in 255ths (0, the default: none). The diffuse reflection keeps the rest;
+    /// the transmitted share, of its own colour, is a part of its own
+    /// (`bsdf/gltf_translucent.rs`). Eight bits, below what a texture resolves, keep
+    /// [`super::Bsdf`] at 64 bytes.
+    pub diffuse_transmission: u8,
 }
 
 /// Schlick's Fresnel of normal reflectance `f0` at `cos`.
@@ -101,7 +107,7 @@ impl GltfPbr {
     /// The dielectric's Fresnel weight at `cos`: `s·F_d`, mixed with the film's reflectance
     /// over `s·f0_d` (see the module docs). What the specular lobe is weighted by; the
     /// diffuse and transmitted light keep `1 − max` of it.
-    fn fresnel_dielectric(&self, cos: f32) -> Rgb {
+    pub(super) fn fresnel_dielectric(&self, cos: f32) -> Rgb {
         let f0 = self.f0_dielectric();
         let plain = schlick(f0, cos) * self.specular;
         if self.iridescence <= 0.0 {
@@ -182,7 +188,7 @@ impl GltfPbr {
             let mut f = Rgb::BLACK;
             if m < 1.0 {
                 let fd = self.fresnel_dielectric(cos);
-                let diffuse = base * ((1.0 - t) * FRAC_1_PI * l.z);
+                let diffuse = base * ((1.0 - t) * self.diffuse_reflected() * FRAC_1_PI * l.z);
                 f += (diffuse * (1.0 - fd.max_channel()) + fd * spec) * (1.0 - m);
             }
             if m > 0.0 {
@@ -207,6 +213,11 @@ impl GltfPbr {
         base * ((1.0 - m) * t * (1.0 - fd) * btdf)
     }
 
+    /// The share of the diffuse lobe reflected: `1 − diffuse_transmission`.
+    fn diffuse_reflected(&self) -> f32 {
+        1.0 - f32::from(self.diffuse_transmission) / 255.0
+    }
+
     /// The lobes' probabilities: diffuse, reflection, transmission (from outside), in
     /// proportion to their weights at the facet of the normal (the film's included).
     fn probabilities(&self, v: Vec3) -> [f32; 3] {
@@ -217,7 +228,7 @@ impl GltfPbr {
             0.0
         };
         let lum = self.base_color.luminance().max(0.05);
-        let diffuse = (1.0 - m) * (1.0 - t) * (1.0 - f) * lum;
+        let diffuse = (1.0 - m) * (1.0 - t) * self.diffuse_reflected() * (1.0 - f) * lum;
         let specular = (1.0 - m) * f + m;
         let trans = (1.0 - m) * t * (1.0 - f) * lum;
         let sum = diffuse + specular + trans;
@@ -362,6 +373,7 @@ mod tests {
             film_ior: 1.3,
             film_thickness: 400,
             volume: false,
+            diffuse_transmission: 0,
         }
     }
 

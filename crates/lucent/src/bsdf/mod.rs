@@ -53,6 +53,7 @@ mod classic;
 mod conductor;
 mod dielectric;
 pub mod gltf_pbr;
+mod gltf_translucent;
 mod lambert;
 mod plastic;
 pub mod principled;
@@ -80,6 +81,7 @@ pub use sheen::{Sheen, SheenAlbedo};
 use classic::Classic;
 use conductor::Conductor;
 use dielectric::Dielectric;
+use gltf_translucent::GltfTranslucent;
 use lambert::Lambert;
 use plastic::Plastic;
 use rough_conductor::RoughConductor;
@@ -225,6 +227,10 @@ pub enum Bsdf<'a> {
     Principled(Principled),
     /// glTF 2.0's metallic-roughness BRDF (with its specular, ior and transmission layers).
     Gltf(GltfPbr),
+    /// glTF's diffuse transmission (`KHR_materials_diffuse_transmission`): a Lambertian lobe
+    /// through the surface of `base_color`, under the specular layer of the other parameters
+    /// (see `bsdf/gltf_translucent.rs`); the same from both sides.
+    GltfTranslucent(GltfPbr),
     /// A sheen layer (glTF's `KHR_materials_sheen`).
     Sheen(Sheen),
     /// The thin-sheet Disney BSDF, as Mitsuba's `principledthin` computes it.
@@ -263,6 +269,7 @@ enum Model<'a> {
     Principled(Principled),
     PrincipledThin(PrincipledThin),
     Gltf(GltfPbr),
+    GltfTranslucent(GltfTranslucent),
     Sheen(Sheen),
     Classic(Classic),
 }
@@ -320,6 +327,7 @@ impl<'a> Bsdf<'a> {
             Bsdf::Principled(p) => Model::Principled(p),
             Bsdf::PrincipledThin(p) => Model::PrincipledThin(p),
             Bsdf::Gltf(p) => Model::Gltf(p),
+            Bsdf::GltfTranslucent(p) => Model::GltfTranslucent(GltfTranslucent(p)),
             Bsdf::Sheen(p) => Model::Sheen(p),
             Bsdf::Classic {
                 kd,
@@ -346,6 +354,7 @@ impl<'a> Bsdf<'a> {
             Model::Principled(b) => b.eval(wo, wi, mode),
             Model::PrincipledThin(b) => b.eval(wo, wi),
             Model::Gltf(b) => b.eval(wo, wi, mode),
+            Model::GltfTranslucent(b) => b.eval(wo, wi),
             Model::Sheen(b) => b.eval(wo, wi),
             Model::Classic(b) => b.eval(wo, wi),
         };
@@ -368,6 +377,7 @@ impl<'a> Bsdf<'a> {
             Model::Principled(b) => b.pdf(wo, wi),
             Model::PrincipledThin(b) => b.pdf(wo, wi),
             Model::Gltf(b) => b.pdf(wo, wi),
+            Model::GltfTranslucent(b) => b.pdf(wo, wi),
             Model::Sheen(b) => b.pdf(wo, wi),
             Model::Classic(b) => b.pdf(wo, wi),
         };
@@ -392,6 +402,7 @@ impl<'a> Bsdf<'a> {
             Model::Principled(b) => b.sample(wo, u_lobe, u, mode),
             Model::PrincipledThin(b) => b.sample(wo, u_lobe, u),
             Model::Gltf(b) => b.sample(wo, u_lobe, u, mode),
+            Model::GltfTranslucent(b) => b.sample(wo, u),
             Model::Sheen(b) => b.sample(wo, u),
             Model::Classic(b) => b.sample(wo, u_lobe, u, mode),
         }?;
@@ -417,6 +428,7 @@ impl<'a> Bsdf<'a> {
             | Model::Principled(_)
             | Model::PrincipledThin(_)
             | Model::Gltf(_)
+            | Model::GltfTranslucent(_)
             | Model::Sheen(_) => false,
             Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => true,
             Model::RoughDielectric(b) => b.is_delta(),
@@ -436,6 +448,7 @@ impl<'a> Bsdf<'a> {
             | Model::Principled(_)
             | Model::PrincipledThin(_)
             | Model::Gltf(_)
+            | Model::GltfTranslucent(_)
             | Model::Sheen(_) => 0.0,
             Model::Conductor(_) | Model::Dielectric(_) | Model::ThinDielectric(_) => 1.0,
             Model::RoughDielectric(b) => f32::from(u8::from(b.is_delta())),
@@ -460,7 +473,7 @@ impl<'a> Bsdf<'a> {
             // The principled BSDF's inside is seen only through its transmission; the thin one
             // is the same from both sides by itself.
             Bsdf::Principled(p) => p.spec_trans > 0.0 && p.metallic < 1.0,
-            Bsdf::PrincipledThin(_) => true,
+            Bsdf::PrincipledThin(_) | Bsdf::GltfTranslucent(_) => true,
             Bsdf::Gltf(p) => p.transmits(),
             _ => false,
         }

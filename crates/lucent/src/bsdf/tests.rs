@@ -82,9 +82,18 @@ fn disney_and_gltf(base: Rgb) -> Vec<(String, Bsdf<'static>)> {
             film_ior: 1.3,
             film_thickness: 400,
             volume: false,
+            diffuse_transmission: 0,
         };
         f(&mut p);
         (format!("glTF {name}"), Bsdf::Gltf(p))
+    };
+    // The diffuse transmission's part, with the base of a material whose lobe it shares.
+    let translucent = |name: &str, f: &dyn Fn(&mut GltfPbr)| {
+        let (_, Bsdf::Gltf(mut p)) = g(name, &|_| {}) else {
+            unreachable!()
+        };
+        f(&mut p);
+        (format!("glTF translucent {name}"), Bsdf::GltfTranslucent(p))
     };
     vec![
         p("default", &|_| {}),
@@ -132,6 +141,13 @@ fn disney_and_gltf(base: Rgb) -> Vec<(String, Bsdf<'static>)> {
             p.iridescence = 1.0;
             p.film_ior = 1.8;
             p.film_thickness = 350;
+        }),
+        g("leaf", &|p| p.diffuse_transmission = 160),
+        translucent("plain", &|_| {}),
+        translucent("iridescent", &|p| {
+            p.iridescence = 1.0;
+            p.film_thickness = 300;
+            p.specular_color = Rgb::new(1.0, 0.5, 2.0);
         }),
         g("iridescent glass", &|p| {
             p.transmission = 1.0;
@@ -844,6 +860,11 @@ fn reflection_is_reciprocal() {
             wi.z = wi.z.abs();
             if b.transmits() && rng.f32() < 0.5 {
                 wo.z = -wo.z;
+                wi.z = -wi.z;
+            }
+            // A thin sheet's diffuse transmission has no reflection: it is held to the same
+            // symmetry through the sheet (no refraction, so no η² between the sides).
+            if matches!(b, Bsdf::GltfTranslucent(_)) {
                 wi.z = -wi.z;
             }
             if wo.z.abs() < 0.05 || wi.z.abs() < 0.05 {

@@ -128,7 +128,7 @@ impl PathTracer {
             };
             let footprint = footprint_of_sample(sampler.index());
             let m = &scene.materials[hit.material as usize];
-            if m.emits() && hit.normal.dot(ray.dir) < 0.0 {
+            if m.emits_towards(hit.normal, ray.dir) {
                 let w = match (last, scene.emitters.area_light_of(hit.object)) {
                     (Some((p, pdf)), Some(light)) => power_heuristic(
                         pdf,

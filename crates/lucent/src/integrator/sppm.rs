@@ -293,7 +293,7 @@ fn camera_path<'a>(
         };
         let footprint = footprint_of_sample(sampler.index());
         let m = &scene.materials[hit.material as usize];
-        if m.emits() && hit.normal.dot(ray.dir) < 0.0 {
+        if m.emits_towards(hit.normal, ray.dir) {
             direct += beta * m.emission(&scene.tex_coords(m, &hit, footprint), &scene.images);
         }
         let v = Vertex::new(scene, ray.dir, hit, footprint);

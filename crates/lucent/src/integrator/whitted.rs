@@ -229,7 +229,7 @@ impl Whitted {
         let kd = scene.diffuse(m, hit);
 
         let mut color = m.ka * scene.ambient;
-        if entering && m.emits() {
+        if (entering || m.emits_back) && m.emits() {
             color += m.emission(&scene.tex_coords(m, hit, 1.0), &scene.images);
         }
         for (j, light) in scene.lights.iter().enumerate() {

@@ -264,7 +264,10 @@ impl Surface {
             | Surface::ThinDielectric { .. }
             | Surface::PrincipledThin(_) => true,
             Surface::Principled(p) => p.spec_trans.mean(&[]).max_channel() > 0.0,
-            Surface::Gltf(p) => p.transmission.mean(&[]).max_channel() > 0.0,
+            Surface::Gltf(p) => {
+                p.transmission.mean(&[]).max_channel() > 0.0
+                    || p.diffuse_transmission.mean(&[]).max_channel() > 0.0
+            }
             Surface::Blend { first, second, .. } => first.transmits() || second.transmits(),
             Surface::TwoSided { front, back } => front.transmits() || back.transmits(),
             Surface::NormalMap { inner, .. } | Surface::BumpMap { inner, .. } => inner.transmits(),
@@ -383,6 +386,10 @@ pub struct Material {
     /// Whether the surface's back is not there: every ray that meets it from behind passes
     /// through, as glTF culls the back faces of single-sided materials.
     pub cull_back: bool,
+    /// Whether the surface emits from its back as from its front (glTF's unlit two-sided
+    /// materials). Such a surface is never sampled as a light (the build gives it an
+    /// `emission_map`): its light is found by the rays that hit it, from either side.
+    pub emits_back: bool,
 }
 
 impl Default for Material {
@@ -403,6 +410,7 @@ impl Default for Material {
             two_sided: true,
             vertex_colors: true,
             cull_back: false,
+            emits_back: false,
         }
     }
 }
@@ -460,6 +468,13 @@ impl Material {
     /// Whether the surface emits light somewhere.
     pub fn emits(&self) -> bool {
         !self.ke.is_black()
+    }
+
+    /// Whether a ray along `dir` meeting geometric normal `ng` sees the surface's emission: on
+    /// its front, or on either side when it [`emits_back`](Material::emits_back).
+    #[inline]
+    pub fn emits_towards(&self, ng: glam::Vec3, dir: glam::Vec3) -> bool {
+        self.emits() && (self.emits_back || ng.dot(dir) < 0.0)
     }
 
     /// Whether looking the surface's textures up needs texture coordinates.

@@ -33,7 +33,8 @@ pub enum Side {
 /// One leaf of a resolved surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Part<'a> {
-    /// Its share of the mixture; the weights sum to at most 1.
+    /// Its factor in the sum. The weights sum to at most 1, but for a glTF material's
+    /// diffuse transmission, which shares its base's weight (the two split one diffuse lobe).
     pub weight: f32,
     /// The shading frame its BSDF works in.
     pub frame: Frame,
@@ -474,15 +475,25 @@ impl<'a> Resolve<'_, 'a, '_> {
             self.push(Bsdf::Sheen(sheen), below, g, flipped, terminator, 0.0);
             below *= scale.max(0.0);
         }
-        let rotation = maps.anisotropy_rotation;
         self.push(
             Bsdf::Gltf(layers.base),
             below,
             g,
             flipped,
             terminator,
-            rotation,
+            layers.rotation,
         );
+        // After the base: where blends fill the parts, the base is kept.
+        if let Some((share, translucent)) = layers.translucent {
+            self.push(
+                Bsdf::GltfTranslucent(translucent),
+                below * share,
+                g,
+                flipped,
+                terminator,
+                0.0,
+            );
+        }
     }
 
     /// A map's perturbed geometry `p` of `g` made safe as Mitsuba's `normalmap` and `bumpmap`
