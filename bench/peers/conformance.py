@@ -69,6 +69,29 @@ def mask(n=64):
     return np.clip((0.4 - r) / 0.05, 0.0, 1.0)[..., None].repeat(3, 2)
 
 
+def sky(w=64, h=32):
+    """An environment (linear, for an EXR): a blue-to-white sky over a brown ground, a band
+    of colour that changes around the horizon (so that a turn shows), and a soft sun."""
+    y, x = (np.mgrid[0:h, 0:w] + 0.5) / np.array([h, w])[:, None, None]
+    theta, phi = y * np.pi, x * 2 * np.pi
+    up = np.clip(np.cos(theta), 0, 1)[..., None]
+    img = up * np.array([0.3, 0.5, 1.0]) + (1 - up) * np.array([0.9, 0.9, 0.85])
+    ground = (theta > np.pi / 2)[..., None]
+    img = np.where(ground, np.array([0.25, 0.18, 0.1]), img)
+    band = np.exp(-(((theta - np.pi / 2) / 0.25) ** 2))[..., None]
+    img = img + band * 0.6 * np.stack([0.5 + 0.5 * np.sin(phi), 0.5 + 0.5 * np.cos(2 * phi), 0.5 - 0.5 * np.sin(phi)], -1)
+    sun = np.exp(-(((theta - 0.7) ** 2 + (phi - 4.0) ** 2) / 0.02))[..., None]
+    return img + sun * 30.0
+
+
+def write_exr(path, img):
+    import mitsuba as mi
+
+    mi.Bitmap(img.astype(np.float32), pixel_format=mi.Bitmap.PixelFormat.RGB).write(path)
+
+
+EXR_TEXTURES = {"sky.exr": sky}
+
 TEXTURES = {
     "checker.png": checker,
     "roughness.png": stripes,
@@ -331,6 +354,15 @@ LIGHTS = {
     ]
 }
 LIGHTS["roughplastic-ggx-0.2-floor"] = SKY
+# An image environment, turned: a glossy ball shows where its texels land, the floor what it
+# sends.
+CASES["emitter-envmap"] = (BALL, rough("roughconductor", "ggx", 0.1, COPPER))
+LIGHTS["emitter-envmap"] = """    <emitter type="envmap">
+        <string name="filename" value="../textures/sky.exr"/>
+        <float name="scale" value="0.8"/>
+        <transform name="to_world"><rotate y="1" angle="70"/><rotate x="1" angle="15"/></transform>
+    </emitter>
+"""
 
 
 def scene_text(name):
@@ -352,6 +384,8 @@ def write(_args):
     os.makedirs(os.path.join(SUITE, "textures"), exist_ok=True)
     for file, make in TEXTURES.items():
         write_png(os.path.join(SUITE, "textures", file), make())
+    for file, make in EXR_TEXTURES.items():
+        write_exr(os.path.join(SUITE, "textures", file), make())
     for name in CASES:
         with open(os.path.join(SUITE, "scenes", f"{name}.xml"), "w") as f:
             f.write(scene_text(name))

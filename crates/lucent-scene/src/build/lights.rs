@@ -2,11 +2,12 @@
 
 use super::{Context, refuse_keys, required, span};
 use crate::desc::texture::Encoding;
-use crate::desc::{FalloffName, LightKind, SceneDesc};
+use crate::desc::{FalloffName, LightKind, SceneDesc, TexelsName};
 use crate::error::LoadError;
 use glam::Vec3;
 use lucent::Rgb;
 use lucent::light::{DirectionalLight, Falloff, Light, PointLight, SpotLight};
+use lucent::texture::image::LatLongTexels;
 
 /// An emitting object's surface: its area and (area-weighted) centre, in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,12 +43,13 @@ pub fn add_lights(
             ("cutoff_start", span(&d.cutoff_start)),
             ("file", span(&d.file)),
             ("rotation", span(&d.rotation)),
+            ("texels", span(&d.texels)),
         ];
         let takes: &[&str] = match d.kind {
             LightKind::Point => &["position", "falloff"],
             LightKind::Spot => &["position", "falloff", "direction", "cutoff", "cutoff_start"],
             LightKind::Directional => &["direction"],
-            LightKind::Environment => &["file", "rotation"],
+            LightKind::Environment => &["file", "rotation", "texels"],
         };
         let others: Vec<_> = keys
             .into_iter()
@@ -134,6 +136,12 @@ pub fn add_lights(
                             let to_image = environment_rotation(r.get_ref().0)
                                 .ok_or_else(|| ctx.source.error(r.span(), "an environment's `rotation` must be a rotation: orthonormal columns, no mirror"))?;
                             ctx.builder.environment_rotation(to_image);
+                        }
+                        if let Some(t) = &d.texels {
+                            ctx.builder.environment_texels(match t.get_ref() {
+                                TexelsName::Cells => LatLongTexels::Cells,
+                                TexelsName::Poles => LatLongTexels::Poles,
+                            });
                         }
                         ctx.builder
                             .stored_image(id)

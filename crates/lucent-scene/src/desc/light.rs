@@ -32,6 +32,17 @@ impl LightKind {
     }
 }
 
+/// Where an environment image's texels lie on the sphere (`lucent::texture::image::LatLongTexels`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TexelsName {
+    /// Centred in the cells of a `w × h` grid (lucent's default).
+    #[default]
+    Cells,
+    /// Columns centred in their cells, rows from pole to pole (Mitsuba's `envmap`).
+    Poles,
+}
+
 /// How a point light falls off.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -77,6 +88,9 @@ pub struct LightDesc {
     /// translation is ignored): the image's +y and −z are turned to where it takes them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation: Option<Spanned<Matrix>>,
+    /// Environment: where the image's texels lie (default `"cells"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub texels: Option<Spanned<TexelsName>>,
 }
 
 impl LightDesc {
@@ -92,6 +106,7 @@ impl LightDesc {
             cutoff_start: None,
             file: None,
             rotation: None,
+            texels: None,
         }
     }
 }

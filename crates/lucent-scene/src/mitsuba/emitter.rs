@@ -6,13 +6,13 @@
 //! | `spot` (`to_world`: at M·0, shining along M·+z; `intensity`, `cutoff_angle` default 20°, `beam_width` default ¾ of it) | spot light (`cutoff`, `cutoff_start`), quadratic falloff |
 //! | `directional` (`direction` or `to_world`'s +z, `irradiance`) | directional light |
 //! | `constant` (`radiance`) | environment light, `intensity` |
-//! | `envmap` (`filename`, `scale`, `to_world`) | environment light, `file`, `intensity = scale`, `rotation` = `to_world`'s rotation after a half turn about +y (Mitsuba's image frame faces its centre towards +z, lucent's towards −z) |
+//! | `envmap` (`filename`, `scale`, `to_world`) | environment light, `file`, `intensity = scale`, `rotation` = `to_world`'s rotation after a half turn about +y (Mitsuba's image frame faces its centre towards +z, lucent's towards −z), `texels = "poles"` (Mitsuba's first and last rows of texels lie on the poles) |
 //!
 //! `area` emitters belong inside shapes (see `shape.rs`).
 
 use super::Convert;
 use super::xml::Element;
-use crate::desc::{Color, FalloffName, Finite, LightDesc, LightKind, Matrix, Vector};
+use crate::desc::{Color, FalloffName, Finite, LightDesc, LightKind, Matrix, TexelsName, Vector};
 use crate::error::LoadError;
 use glam::{DMat4, DVec3};
 use lucent::Rgb;
@@ -140,6 +140,8 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<LightDesc, Load
                 0..0,
                 Matrix(glam::DMat4::from_mat3(unit).as_mat4()),
             ));
+            // Mitsuba's envmap puts its first and last rows of texels on the poles.
+            l.texels = Some(Spanned::new(0..0, TexelsName::Poles));
             l
         }
         "area" => {

@@ -9,6 +9,7 @@ use crate::material::Material;
 use crate::motion::Motion;
 use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, SphereMap, Transform, TriangleTest};
 use crate::texture::ImageTexture;
+use crate::texture::image::LatLongTexels;
 use glam::Affine3A;
 use lucent_accel::{Aabb, AccelKind, WideTriangleBvh};
 use std::sync::Arc;
@@ -104,6 +105,7 @@ pub struct SceneBuilder {
     images: Vec<ImageTexture>,
     environment: Option<u32>,
     environment_to_image: glam::Mat3,
+    environment_texels: LatLongTexels,
     spheres: Vec<(Sphere, ObjectTag)>,
     sphere_maps: Vec<SphereMap>,
     planes: Vec<(Plane, ObjectTag)>,
@@ -128,6 +130,7 @@ impl SceneBuilder {
             images: vec![],
             environment: None,
             environment_to_image: glam::Mat3::IDENTITY,
+            environment_texels: LatLongTexels::Cells,
             spheres: vec![],
             sphere_maps: vec![],
             planes: vec![],
@@ -204,6 +207,13 @@ impl SceneBuilder {
     /// image's frame (+y up, the centre column along −z). Identity by default.
     pub fn environment_rotation(&mut self, to_image: glam::Mat3) -> &mut Self {
         self.environment_to_image = to_image;
+        self
+    }
+
+    /// Where the environment image's texels lie on the sphere: centred in their cells (the
+    /// default) or on the points of the grid (Mitsuba's `envmap`).
+    pub fn environment_texels(&mut self, texels: LatLongTexels) -> &mut Self {
+        self.environment_texels = texels;
         self
     }
 
@@ -581,6 +591,7 @@ impl SceneBuilder {
             images: Arc::new(self.images),
             environment: self.environment,
             environment_to_image: self.environment_to_image,
+            environment_texels: self.environment_texels,
             spheres: Arc::new(self.spheres),
             sphere_maps: Arc::new(self.sphere_maps),
             planes: Arc::new(self.planes),

@@ -172,6 +172,8 @@ pub struct Scene {
     pub environment: Option<u32>,
     /// The rotation taking a world direction to the environment image's frame.
     pub environment_to_image: glam::Mat3,
+    /// Where the environment image's texels lie on the sphere.
+    pub environment_texels: crate::texture::image::LatLongTexels,
     spheres: Arc<Vec<(Sphere, ObjectTag)>>,
     /// How each sphere's texture coordinates lie on it (parallel to `spheres`).
     sphere_maps: Arc<Vec<SphereMap>>,
@@ -287,7 +289,8 @@ impl Scene {
     pub fn background_along(&self, dir: glam::Vec3) -> Rgb {
         match self.environment.and_then(|i| self.images.get(i as usize)) {
             Some(image) => {
-                image.lookup_direction((self.environment_to_image * dir).normalize_or_zero())
+                let d = (self.environment_to_image * dir).normalize_or_zero();
+                image.lookup_direction_with(d, self.environment_texels)
             }
             None => self.background,
         }

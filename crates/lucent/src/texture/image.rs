@@ -372,6 +372,21 @@ impl ImageTexture {
         // Sideways the image wraps around; the poles do not meet.
         bilinear(&self.base, latlong_uv(d), [Wrap::Repeat, Wrap::Clamp]).rgb
     }
+
+    /// [`ImageTexture::lookup_direction`] with the texels placed as `texels` says.
+    pub fn lookup_direction_with(&self, d: Vec3, texels: LatLongTexels) -> Rgb {
+        match texels {
+            LatLongTexels::Cells => self.lookup_direction(d),
+            LatLongTexels::Poles => {
+                // Row y at v = y/(h − 1): in cell coordinates, where row centres sit at
+                // (y + ½)/h, that is (v·(h − 1) + ½)/h.
+                let uv = latlong_uv(d);
+                let h = self.height() as f32;
+                let cells = Vec2::new(uv.x, (uv.y * (h - 1.0) + 0.5) / h);
+                bilinear(&self.base, cells, [Wrap::Repeat, Wrap::Clamp]).rgb
+            }
+        }
+    }
 }
 
 /// The texel holding `uv`.
@@ -414,6 +429,18 @@ fn bilinear(level: &Level, uv: Vec2, wrap: [Wrap; 2]) -> Texel {
     top.scale(1.0 - fy).add(bottom.scale(fy))
 }
 
+/// Where a lat-long image's texels lie on the sphere.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LatLongTexels {
+    /// Each texel is the centre of its cell of a `w × h` grid over `u` and `v` (lucent's default):
+    /// texel `(x, y)` at `u = (x + ½)/w`, `v = (y + ½)/h`.
+    #[default]
+    Cells,
+    /// The columns as in `Cells`, the rows from pole to pole, as Mitsuba 3's `envmap` has them:
+    /// texel `(x, y)` at `u = (x + ½)/w`, `v = y/(h − 1)`, the first and last rows on the poles.
+    Poles,
+}
+
 /// Texture coordinates of unit direction `d` in a lat-long image (see
 /// [`ImageTexture::lookup_direction`]).
 pub fn latlong_uv(d: Vec3) -> Vec2 {
@@ -434,6 +461,37 @@ mod tests {
             Rgb::gray(3.0),
         ];
         ImageTexture::new(2, 2, t).unwrap()
+    }
+
+    #[test]
+    fn with_rows_on_the_poles_the_first_and_last_rows_are_the_poles() {
+        use crate::light::environment::latlong_direction;
+        // Texel (x, y) = 10·y + x of a 4 × 3 image.
+        let t: Vec<Rgb> = (0..12)
+            .map(|i| Rgb::gray((10 * (i / 4) + i % 4) as f32))
+            .collect();
+        let img = ImageTexture::new(4, 3, t).unwrap();
+        let at = |u: f32, v: f32| {
+            let (d, _) = latlong_direction(Vec2::new(u, v));
+            img.lookup_direction_with(d, LatLongTexels::Poles).r
+        };
+        let close = |a: f32, b: f32| assert!((a - b).abs() < 1e-3, "{a} vs {b}");
+        // Row 1 on the equator (v = 1/2), column x at its cell's centre.
+        for x in 0..4 {
+            close(at((x as f32 + 0.5) / 4.0, 0.5), 10.0 + x as f32);
+        }
+        // Rows 0 and 2 on the poles, approached along column 1.
+        close(at(0.375, 1e-5), 1.0);
+        close(at(0.375, 1.0 - 1e-5), 21.0);
+        // At the seam the last column and the first blend.
+        close(at(0.0, 0.5), 0.5 * (13.0 + 10.0));
+        // Halfway between rows, their mean.
+        close(at(0.625, 0.75), 0.5 * (12.0 + 22.0));
+        // The default centres the rows in their cells instead: v = 1/2 is row 1 there too,
+        // but v = 1/6 is row 0's centre, where the poles' rows blend it with row 1.
+        let (d, _) = latlong_direction(Vec2::new(0.375, 1.0 / 6.0));
+        close(img.lookup_direction_with(d, LatLongTexels::Cells).r, 1.0);
+        close(at(0.375, 1.0 / 6.0), 1.0 + 10.0 / 3.0);
     }
 
     #[test]
