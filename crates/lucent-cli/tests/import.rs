@@ -410,7 +410,7 @@ fn gltf_converts_to_the_same_image() {
         r#"{{
   "asset": {{"version": "2.0"}},
   "extensionsUsed": ["KHR_lights_punctual"],
-  "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "point", "intensity": 3000, "color": [1, 0.9, 0.8]}}]}}}},
+  "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "point", "intensity": 20000, "color": [1, 0.9, 0.8]}}]}}}},
   "scene": 0,
   "scenes": [{{"nodes": [0, 2, 3]}}],
   "nodes": [

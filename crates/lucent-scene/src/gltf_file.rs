@@ -57,8 +57,8 @@ mod skin;
 mod source;
 
 use crate::desc::{
-    CameraDesc, FalloffName, Finite, LightDesc, LightKind, Matrix, ObjectDesc, ObjectKind,
-    SceneDesc, Vector,
+    CameraDesc, FalloffName, Finite, IntegratorName, LightDesc, LightKind, Matrix, ObjectDesc,
+    ObjectKind, SceneDesc, Vector,
 };
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
@@ -84,6 +84,10 @@ pub const LUMENS_PER_WATT: f32 = 683.0;
 
 /// Image height in pixels when a camera gives an aspect ratio (the width follows from it).
 pub const IMAGE_HEIGHT: u32 = 600;
+
+/// Samples per pixel of a glTF scene, rendered by the path tracer: a clean first look at a
+/// model in a few seconds.
+pub const DEFAULT_SAMPLES: u32 = 16;
 
 /// The extensions read (others listed in `extensionsUsed` give a warning; others listed in
 /// `extensionsRequired` make the file unreadable).
@@ -303,6 +307,10 @@ pub fn import_gltf(
         lights,
         objects,
     };
+    // glTF's materials are physically based: the path tracer renders them as written, at
+    // enough samples for a first look (`--spp`, `--time-limit` choose otherwise).
+    desc.render.integrator = IntegratorName::Path;
+    desc.image.samples = Spanned::new(0..0, DEFAULT_SAMPLES);
     let camera_given = camera.is_some();
     if let Some((c, aspect)) = camera {
         desc.camera = Spanned::new(0..0, c);

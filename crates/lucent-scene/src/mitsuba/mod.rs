@@ -60,7 +60,7 @@ pub mod texture;
 pub mod transform;
 pub mod xml;
 
-use crate::desc::{ImageDesc, RenderDesc, SceneDesc, WorldDesc};
+use crate::desc::{ImageDesc, IntegratorName, RenderDesc, SceneDesc, WorldDesc};
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
 use crate::import::{Imported, placeholder_camera};
@@ -177,10 +177,9 @@ pub fn import_mitsuba(
             }
         }
     }
+    // Without an <integrator> Mitsuba uses its path tracer, unbounded; so does lucent.
     if first_integrator.is_none() {
-        cx.warnings.push(root.loc.warning(
-            "no <integrator>: Mitsuba would use its path tracer; lucent renders this scene with its Whitted integrator until it has one",
-        ));
+        desc.render.integrator = IntegratorName::Path;
     }
     // Declarations no shape used are still checked, as Mitsuba instantiates them all.
     for el in declared {

@@ -37,14 +37,7 @@ fn shapes_map_onto_objects() {
     );
     let path = dir.write("shapes.xml", &text);
     let imported = import(&path);
-    assert!(
-        imported
-            .warnings
-            .iter()
-            .all(|w| w.contains("no <integrator>")),
-        "{:?}",
-        imported.warnings
-    );
+    assert!(imported.warnings.is_empty(), "{:#?}", imported.warnings);
     let o = objects(&imported);
     let kinds: Vec<ObjectKind> = o.iter().map(|o| o.kind).collect();
     use ObjectKind::*;
@@ -170,14 +163,7 @@ fn bsdfs_map_onto_material_kinds() {
     let text = scene(&bsdfs.map(shape).concat());
     let path = dir.write("bsdfs.xml", &text);
     let imported = import(&path);
-    assert!(
-        imported
-            .warnings
-            .iter()
-            .all(|w| w.contains("no <integrator>")),
-        "{:#?}",
-        imported.warnings
-    );
+    assert!(imported.warnings.is_empty(), "{:#?}", imported.warnings);
     let m = |name: &str| material(&imported, name);
     let solid = |t: &TextureDesc| match t {
         TextureDesc::Solid(c) => *c,
@@ -332,10 +318,12 @@ fn emitters_map_onto_lights() {
     let glow = material(&imported, objects(&imported)[0].material.get_ref());
     assert_eq!(glow.emission, Some(TextureDesc::Solid(Rgb::gray(4.0))));
     let (_, loaded) = load(&path);
+    // Rendered by the path tracer, as Mitsuba renders a scene without an <integrator>: the
+    // area light is an emitting surface, sampled as such, not one of the scene's lights.
     assert_eq!(
         loaded.scene.lights.len(),
-        4,
-        "three lights and the area light"
+        3,
+        "the point, spot and directional lights"
     );
     assert_eq!(loaded.scene.background, Rgb::new(0.1, 0.2, 0.3));
 
@@ -451,5 +439,5 @@ fn a_plugin_read_twice_warns_once() {
     let sheen =
         format!("twice.xml:{line}:{column}: `sheen` of the diffuse bsdf is not read by lucent");
     assert_eq!(w.iter().filter(|l| l.contains(&sheen)).count(), 1, "{w:#?}");
-    assert_eq!(w.len(), 3, "{w:#?}");
+    assert_eq!(w.len(), 2, "{w:#?}");
 }
