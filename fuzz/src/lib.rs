@@ -11,7 +11,10 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// The options every target loads with: sandboxed.
-pub const OPTIONS: LoadOptions = LoadOptions { sandbox: true };
+pub const OPTIONS: LoadOptions = LoadOptions {
+    sandbox: true,
+    limits: lucent_scene::Limits::DEFAULT,
+};
 
 /// A triangle as OBJ, with a material library, texture coordinates and normals.
 pub const TRI_OBJ: &str = "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0 1 0 0\nvt 0 0\nvt 1 0\nvn 0 0 1\nusemtl red\nf 1/1/1 2/2/1 3//1\nusemtl glass\nf -3 -2 -1\n";

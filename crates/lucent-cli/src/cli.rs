@@ -188,6 +188,12 @@ pub struct Overrides {
     /// from untrusted sources.
     #[arg(long)]
     pub sandbox: bool,
+    /// Raise (or lower) one of the scene's budgets, checked before the work they bound:
+    /// `xml` (MiB of Mitsuba XML, includes counted each time; default 16), `objects` (default
+    /// 100000), `geometry` (vertices plus triangles stored; default 134217728) or `film` (MiB of
+    /// a partial film or checkpoint; default 1024). Repeat for several.
+    #[arg(long = "limit", value_name = "NAME=VALUE", value_parser = limit_spec)]
+    pub limits: Vec<String>,
     /// Whitted without shadow rays: every light reaches every point that faces it.
     #[arg(long)]
     pub no_shadows: bool,
@@ -301,6 +307,21 @@ pub enum FilterArg {
     Mitchell,
 }
 
+/// A `--limit` value, checked: `NAME=VALUE` with a budget's name and a positive number.
+fn limit_spec(s: &str) -> Result<String, String> {
+    lucent_scene::Limits::default().set(s)?;
+    Ok(s.trim().to_string())
+}
+
+/// The budgets `specs` (checked `--limit` values) set, over the defaults.
+pub fn limits_of(specs: &[String]) -> lucent_scene::Limits {
+    let mut limits = lucent_scene::Limits::default();
+    for s in specs {
+        limits.set(s).expect("checked when parsed");
+    }
+    limits
+}
+
 fn threshold(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(v) if v >= 0.0 => Ok(v),
@@ -390,6 +411,12 @@ pub struct ViewArgs {
     /// Refuse files named by the scene outside its folder.
     #[arg(long)]
     pub sandbox: bool,
+    /// Raise (or lower) one of the scene's budgets, checked before the work they bound:
+    /// `xml` (MiB of Mitsuba XML, includes counted each time; default 16), `objects` (default
+    /// 100000), `geometry` (vertices plus triangles stored; default 134217728) or `film` (MiB of
+    /// a partial film or checkpoint; default 1024). Repeat for several.
+    #[arg(long = "limit", value_name = "NAME=VALUE", value_parser = limit_spec)]
+    pub limits: Vec<String>,
     /// How a scene without a camera is framed.
     #[command(flatten)]
     pub framing: FramingArgs,
@@ -405,6 +432,7 @@ impl ViewArgs {
             seed: self.seed,
             accel: self.accel,
             sandbox: self.sandbox,
+            limits: self.limits.clone(),
             framing: self.framing,
             ..Overrides::default()
         }
@@ -437,6 +465,10 @@ pub struct MergeArgs {
     /// The merged image: .png, .pfm or .exr.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Raise (or lower) the `film` budget: MiB of pixel data a partial film may hold
+    /// (default 1024), checked from its header before its pixels are read.
+    #[arg(long = "limit", value_name = "film=MIB", value_parser = limit_spec)]
+    pub limits: Vec<String>,
 }
 
 /// `lucent convert`.
@@ -449,6 +481,12 @@ pub struct ConvertArgs {
     /// Refuse files named by the scene outside its folder.
     #[arg(long)]
     pub sandbox: bool,
+    /// Raise (or lower) one of the scene's budgets, checked before the work they bound:
+    /// `xml` (MiB of Mitsuba XML, includes counted each time; default 16), `objects` (default
+    /// 100000), `geometry` (vertices plus triangles stored; default 134217728) or `film` (MiB of
+    /// a partial film or checkpoint; default 1024). Repeat for several.
+    #[arg(long = "limit", value_name = "NAME=VALUE", value_parser = limit_spec)]
+    pub limits: Vec<String>,
     /// How a scene without a camera is framed (the framing camera is written out).
     #[command(flatten)]
     pub framing: FramingArgs,

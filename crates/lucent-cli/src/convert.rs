@@ -19,6 +19,7 @@ pub fn run(args: &ConvertArgs) -> anyhow::Result<ExitCode> {
     crate::output::check_writable(&args.output)?;
     let options = LoadOptions {
         sandbox: args.sandbox,
+        limits: crate::cli::limits_of(&args.limits),
     };
     let mut file = SceneFile::read_with(&args.input, &options)?;
     let framing_warning = crate::job::frame(&mut file, &args.framing);

@@ -12,6 +12,7 @@ use anyhow::{Context, anyhow, bail};
 use exr::prelude::*;
 use lucent::film::{Film, FilmData};
 use lucent::render::Shard;
+use lucent_scene::{Limit, Limits};
 use std::path::Path;
 
 /// What a film file belongs to.
@@ -158,9 +159,13 @@ const CHANNELS: [(&str, exr::meta::attribute::SampleType); 5] = {
     ]
 };
 
-/// The header, checked before any pixel is read: one layer of a size lucent renders, with the
-/// film's channels — so that a hostile file cannot make the reader allocate gigabytes.
-fn check_header(path: &Path) -> anyhow::Result<exr::meta::MetaData> {
+/// Bytes of pixel data a film file holds per pixel: its five 32-bit channels.
+const BYTES_PER_PIXEL: u64 = 20;
+
+/// The header, checked before any pixel is read: one layer of a size lucent renders and the
+/// `film` budget allows, with the film's channels — so that a hostile file cannot make the
+/// reader allocate gigabytes.
+fn check_header(path: &Path, limits: &Limits) -> anyhow::Result<exr::meta::MetaData> {
     let not_ours = |why: String| not_ours(path, &why);
     let meta = exr::meta::MetaData::read_from_file(path, false)
         .map_err(|e| anyhow!("{}: cannot read the film file: {e}", path.display()))?;
@@ -175,6 +180,20 @@ fn check_header(path: &Path) -> anyhow::Result<exr::meta::MetaData> {
         return Err(not_ours(format!(
             "{w}×{h} pixels, more than lucent renders"
         )));
+    }
+    let bytes = w * h * BYTES_PER_PIXEL;
+    if bytes > limits.film_bytes {
+        bail!(
+            "{}: {}",
+            path.display(),
+            limits.exceeded(
+                Limit::Film,
+                format!(
+                    "a {w}×{h} film holds {} MiB of pixel data",
+                    bytes.div_ceil(1 << 20)
+                )
+            )
+        );
     }
     let channels: Vec<(String, exr::meta::attribute::SampleType)> = header
         .channels
@@ -200,8 +219,8 @@ fn not_ours(path: &Path, why: &str) -> anyhow::Error {
 
 /// The header attributes of a film file, read without its pixels: what a caller can check
 /// before paying for them (a finished shard given to `--resume`).
-pub fn read_meta(path: &Path) -> anyhow::Result<FilmMeta> {
-    let meta = check_header(path)?;
+pub fn read_meta(path: &Path, limits: &Limits) -> anyhow::Result<FilmMeta> {
+    let meta = check_header(path, limits)?;
     meta_of(&meta.headers[0].own_attributes, path)
 }
 
@@ -255,9 +274,9 @@ fn attribute(attributes: &LayerAttributes, key: &str, path: &Path) -> anyhow::Re
 }
 
 /// Reads a film file written by [`write_film`], checking that it is one.
-pub fn read_film(path: &Path) -> anyhow::Result<(Film, FilmMeta)> {
+pub fn read_film(path: &Path, limits: &Limits) -> anyhow::Result<(Film, FilmMeta)> {
     let not_ours = |why: &str| not_ours(path, why);
-    check_header(path)?;
+    check_header(path, limits)?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -358,7 +377,7 @@ mod tests {
             output: "out.png".into(),
         };
         write_film(&path, &film, &meta).unwrap();
-        let (back, back_meta) = read_film(&path).unwrap();
+        let (back, back_meta) = read_film(&path, &Limits::default()).unwrap();
         assert_eq!(back, film);
         assert_eq!(back_meta, meta);
         // A sum that overflowed is stored clamped to the largest float: it reads back, finite.
@@ -366,7 +385,7 @@ mod tests {
         film.add_sample(0, 0, Some(lucent::Rgb::gray(3e38)), 1.0);
         assert_eq!(film.overflowed_pixels(), 1);
         write_film(&path, &film, &meta).unwrap();
-        let (back, _) = read_film(&path).unwrap();
+        let (back, _) = read_film(&path, &Limits::default()).unwrap();
         assert_eq!(back.overflowed_pixels(), 0);
         assert!(back.pixel(0, 0).r >= 1e38 && back.pixel(0, 0).is_finite());
     }

@@ -39,6 +39,7 @@ impl Job {
         let start = std::time::Instant::now();
         let options = LoadOptions {
             sandbox: overrides.sandbox,
+            limits: crate::cli::limits_of(&overrides.limits),
         };
         let file = match scene {
             Some(p) => SceneFile::read_with(p, &options)?,
@@ -348,6 +349,10 @@ impl Overrides {
             self.triangle_test.map(|v| format!("{v:?}").to_lowercase()),
         );
         put("sandbox", self.sandbox.then(|| "true".to_string()));
+        put(
+            "limits",
+            (!self.limits.is_empty()).then(|| self.limits.join(",")),
+        );
         put("no_shadows", self.no_shadows.then(|| "true".to_string()));
         put("aa", self.aa.map(|v| format!("{v:?}").to_lowercase()));
         // Bit patterns: the threshold comes back exactly.
@@ -405,6 +410,14 @@ impl Overrides {
                     })
                 }
                 "sandbox" => o.sandbox = v == "true",
+                "limits" => {
+                    for spec in v.split(',') {
+                        lucent_scene::Limits::default()
+                            .set(spec)
+                            .map_err(|_| bad())?;
+                        o.limits.push(spec.to_string());
+                    }
+                }
                 "no_shadows" => o.no_shadows = v == "true",
                 "aa" => {
                     o.aa = Some(match v {
@@ -457,6 +470,7 @@ mod tests {
             accel: Some(lucent::accel::AccelKind::Octree),
             triangle_test: Some(TriangleTestArg::Projection),
             sandbox: true,
+            limits: vec!["xml=64".to_string(), "objects=500000".to_string()],
             no_shadows: true,
             aa: Some(AaArg::Quadtree),
             aa_threshold: Some(0.1),

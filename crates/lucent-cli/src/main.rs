@@ -4,17 +4,16 @@ mod bench;
 mod cli;
 mod convert;
 mod explain;
-mod film_file;
 mod gallery;
 mod info;
 mod job;
 mod merge;
-mod output;
 mod render;
 mod study;
 mod view;
 
 use clap::Parser;
+use lucent_cli::{film_file, output};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {

@@ -26,10 +26,11 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
         );
     }
     crate::output::check_writable(&args.output)?;
+    let limits = crate::cli::limits_of(&args.limits);
     let mut merged: Option<(Film, FilmMeta, &Path)> = None;
     let mut seen: HashMap<u32, &Path> = HashMap::new();
     for path in &args.parts {
-        let (film, meta) = read_film(path)?;
+        let (film, meta) = read_film(path, &limits)?;
         if let Some((total, first, first_path)) = &merged {
             let same = meta.fingerprint == first.fingerprint
                 && (meta.spp, meta.tile, meta.shard.count)

@@ -305,13 +305,19 @@ fn plan_new(args: &RenderArgs) -> anyhow::Result<Plan> {
 }
 
 fn plan_resume(args: &RenderArgs, ckpt: &Path) -> anyhow::Result<Plan> {
-    if args.scene.is_some() || args.overrides != Default::default() || args.shard.is_some() {
+    // `--limit` alone may come with it: a large checkpoint may need a larger `film` budget.
+    let given = crate::cli::Overrides {
+        limits: Vec::new(),
+        ..args.overrides.clone()
+    };
+    if args.scene.is_some() || given != Default::default() || args.shard.is_some() {
         bail!(
-            "--resume takes the scene and its settings from the checkpoint: give no scene, settings or --shard with it"
+            "--resume takes the scene and its settings from the checkpoint: give no scene, settings (but --limit) or --shard with it"
         );
     }
+    let limits = crate::cli::limits_of(&args.overrides.limits);
     // A finished shard is its own output: said from the header, before its pixels are read.
-    let meta = crate::film_file::read_meta(ckpt)?;
+    let meta = crate::film_file::read_meta(ckpt, &limits)?;
     if absolute(Path::new(&meta.output)) == absolute(ckpt) {
         bail!(
             "{}: this is shard {}/{}'s finished partial film, not a checkpoint: it holds all its samples, and nothing is left to resume (combine the shards with `lucent merge`)",
@@ -320,9 +326,13 @@ fn plan_resume(args: &RenderArgs, ckpt: &Path) -> anyhow::Result<Plan> {
             meta.shard.count
         );
     }
-    let (film, meta) = read_film(ckpt)?;
-    let overrides = crate::cli::Overrides::from_pairs(&meta.overrides)
+    let (film, meta) = read_film(ckpt, &limits)?;
+    let mut overrides = crate::cli::Overrides::from_pairs(&meta.overrides)
         .map_err(|e| anyhow!("{}: {e}", ckpt.display()))?;
+    // Budgets given now are applied after the checkpoint's own.
+    overrides
+        .limits
+        .extend(args.overrides.limits.iter().cloned());
     let scene = (!meta.scene.is_empty()).then(|| PathBuf::from(&meta.scene));
     let job = Job::load(scene.as_deref(), &overrides)?;
     if job.fingerprint() != meta.fingerprint {

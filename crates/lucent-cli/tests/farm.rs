@@ -641,4 +641,27 @@ fn bad_plans_are_refused_before_any_work() {
         "huge.exr",
     );
     assert_refused(&run_in(d, &["render", "--resume", "huge.exr"]), "huge.exr");
+
+    // One of a size lucent renders, 1024 × 1024 (20 MiB of pixel data), is held to the `film`
+    // budget from its header too, with `--limit` on `merge` and on `--resume`.
+    for (i, v) in [0i32, 0, 1023, 1023].iter().enumerate() {
+        bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    std::fs::write(d.join("big.exr"), &bytes).unwrap();
+    let over = "a 1024×1024 film holds 20 MiB of pixel data, over the budget of 16 MiB (`--limit film=N` raises it)";
+    assert_refused(
+        &run_in(
+            d,
+            &["merge", "big.exr", "-o", "x.png", "--limit", "film=16"],
+        ),
+        over,
+    );
+    assert_refused(
+        &run_in(d, &["render", "--resume", "big.exr", "--limit", "film=16"]),
+        over,
+    );
+    // Within the budget its header passes, and the missing pixels are what is refused.
+    let past = run_in(d, &["merge", "big.exr", "-o", "x.png"]);
+    assert_eq!(past.status.code(), Some(1));
+    assert!(!stderr(&past).contains("budget"), "{}", stderr(&past));
 }

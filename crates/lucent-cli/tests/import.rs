@@ -647,6 +647,87 @@ fn mitsuba_xml_converts_to_the_same_image() {
     assert_converts_exactly(&scene, &[]);
 }
 
+/// `lucent info FILE` in `dir` under a 256 MiB address-space limit (a bound on its peak
+/// memory), refused within 5 s (none of these cases should come near it): the error line.
+fn refused_small(dir: &Path, file: &str, extra: &[&str]) -> String {
+    let began = std::time::Instant::now();
+    let e = refused_by(
+        Command::new("sh")
+            .current_dir(dir)
+            .args(["-c", "ulimit -v 262144; exec \"$0\" info \"$@\""])
+            .arg(env!("CARGO_BIN_EXE_lucent"))
+            .arg(file)
+            .args(extra),
+    );
+    assert!(began.elapsed().as_secs_f32() < 5.0, "{file}: {e}");
+    e
+}
+
+#[test]
+fn a_thousand_includes_of_a_thousand_are_refused_within_the_xml_budget() {
+    // 60 bytes included 10⁶ times: 57 MiB of XML from 90 KB of files (before the budget, 9 s
+    // and 478 MB until the old 64 MiB cap refused it).
+    let dir = tempfile::tempdir().unwrap();
+    let includes = |file: &str| {
+        let lines = format!("<include filename=\"{file}\"/>\n").repeat(1000);
+        format!("<scene version=\"3.0.0\">\n{lines}</scene>\n")
+    };
+    write(dir.path(), "a.xml", includes("b.xml"));
+    write(dir.path(), "b.xml", includes("c.xml"));
+    write(
+        dir.path(),
+        "c.xml",
+        "<scene version=\"3.0.0\"><bsdf type=\"diffuse\"/></scene>\n",
+    );
+    let e = refused_small(dir.path(), "a.xml", &[]);
+    assert!(
+        e.contains("MiB of XML, over the budget of 16 MiB (`--limit xml=N` raises it)"),
+        "{e}"
+    );
+    // A lower budget refuses sooner; a scene within it is read.
+    let e = refused_small(dir.path(), "a.xml", &["--limit", "xml=1"]);
+    assert!(e.contains("over the budget of 1 MiB"), "{e}");
+    write(dir.path(), "one.xml", includes("c.xml"));
+    assert_success(
+        &lucent()
+            .current_dir(dir.path())
+            .args(["info", "one.xml", "--limit", "xml=1"])
+            .output()
+            .unwrap(),
+    );
+}
+
+#[test]
+fn an_obj_of_too_many_parts_is_refused_before_its_objects_are_made() {
+    // One triangle under 200,000 materials: an object each (before the budget, 4 s and
+    // 1.3 GB for `info`).
+    let dir = tempfile::tempdir().unwrap();
+    let parts = |n: usize| {
+        let mut s = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        for i in 0..n {
+            s.push_str(&format!("usemtl m{i}\nf 1 2 3\n"));
+        }
+        s
+    };
+    write(dir.path(), "many.obj", parts(200_000));
+    let e = refused_small(dir.path(), "many.obj", &[]);
+    assert!(
+        e.contains("the file's faces use 200000 materials, an object each, over the budget of 100000 (`--limit objects=N` raises it)"),
+        "{e}"
+    );
+    // The budget is the flag's: 300 parts over 200, and within 400.
+    write(dir.path(), "some.obj", parts(300));
+    let e = refused_small(dir.path(), "some.obj", &["--limit", "objects=200"]);
+    assert!(e.contains("over the budget of 200"), "{e}");
+    assert_success(
+        &lucent()
+            .current_dir(dir.path())
+            .args(["info", "some.obj", "--limit", "objects=400"])
+            .output()
+            .unwrap(),
+    );
+}
+
 #[test]
 fn includes_that_multiply_are_refused() {
     // a.xml includes b.xml 100 times, b.xml includes c.xml 100 times, c.xml holds 10 KB: 100 MB

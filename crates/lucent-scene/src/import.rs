@@ -105,6 +105,21 @@ pub fn import_obj(
         .map_err(|e| LoadError::file(path, format!("cannot read the mesh file: {e}")))?;
     inputs.add(&bytes);
     let obj = std::sync::Arc::new(crate::obj::parse_obj(&bytes, path)?);
+    // One object per material used: held to the budget before any is made.
+    let used = obj.used_materials();
+    let limits = &options.limits;
+    if used.len() as u64 > limits.objects {
+        return Err(LoadError::file(
+            path,
+            limits.exceeded(
+                crate::limits::Limit::Objects,
+                format!(
+                    "the file's faces use {} materials, an object each",
+                    used.len()
+                ),
+            ),
+        ));
+    }
     // The build takes its parts from this parse rather than reading the file again.
     files.keep_obj(path, obj.clone());
     let folder = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
@@ -134,7 +149,6 @@ pub fn import_obj(
         warnings.push(format!("{}: the file has no faces", path.display()));
     }
     let mut desc = empty_desc();
-    let used = obj.used_materials();
     for (i, name) in used.iter().enumerate() {
         let our_name = if name.is_empty() {
             "default".to_string()

@@ -16,6 +16,7 @@ pub mod hash;
 pub mod images;
 pub mod import;
 pub mod input;
+pub mod limits;
 pub mod mesh_file;
 pub mod mitsuba;
 pub mod mtl;
@@ -29,6 +30,7 @@ pub use build::{Loaded, build};
 pub use desc::SceneDesc;
 pub use error::{LoadError, Source};
 pub use import::Imported;
+pub use limits::{Limit, Limits};
 pub use paths::LoadOptions;
 pub use toml::Spanned;
 
@@ -75,6 +77,23 @@ pub struct SceneFile {
 /// The scene formats lucent reads, by extension.
 pub const SCENE_EXTENSIONS: [&str; 6] = ["toml", "obj", "ply", "gltf", "glb", "xml"];
 
+/// An error when `desc` holds more objects than the budget allows, before they are built.
+fn within_objects_budget(
+    path: &Path,
+    desc: &SceneDesc,
+    options: &LoadOptions,
+) -> Result<(), LoadError> {
+    let n = desc.objects.len() as u64;
+    let limits = &options.limits;
+    if n > limits.objects {
+        return Err(LoadError::file(
+            path,
+            limits.exceeded(Limit::Objects, format!("the scene has {n} objects")),
+        ));
+    }
+    Ok(())
+}
+
 impl SceneFile {
     /// Reads the scene file at `path` (TOML, OBJ, PLY, glTF, GLB or Mitsuba XML).
     pub fn read(path: &Path) -> Result<Self, LoadError> {
@@ -118,8 +137,10 @@ impl SceneFile {
             })?;
             let mut file = Self::parse(path.to_path_buf(), base_dir, text)?;
             file.options = *options;
+            within_objects_budget(path, &file.desc, options)?;
             return Ok(file);
         };
+        within_objects_budget(path, &imported.desc, options)?;
         let desc = &mut imported.desc;
         let emits = desc
             .materials

@@ -4,6 +4,7 @@
 use crate::error::LoadError;
 use crate::gltf_file::GltfFile;
 use crate::hash::Fingerprint;
+use crate::limits::{Limit, Limits};
 use crate::obj::ObjFile;
 use crate::paths::LoadOptions;
 use glam::Vec3;
@@ -60,10 +61,6 @@ pub struct MeshFiles {
     stored: u64,
 }
 
-/// Most vertices plus triangles a scene's meshes may hold in all (about 5 GB of geometry and
-/// accelerators); instances of a stored mesh do not count again.
-pub const MAX_STORED: u64 = 1 << 27;
-
 impl std::fmt::Debug for MeshFiles {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("MeshFiles")
@@ -81,7 +78,8 @@ impl MeshFiles {
     }
 
     /// As [`read_mesh_part`], reusing OBJ and glTF files already read (their bytes are added
-    /// to the fingerprint the first time only), within the scene's budget of [`MAX_STORED`].
+    /// to the fingerprint the first time only), within the scene's geometry budget
+    /// (`options.limits.geometry`).
     pub fn read_part(
         &mut self,
         path: &Path,
@@ -93,11 +91,16 @@ impl MeshFiles {
         // A budget over every mesh stored: small files can name many large parts (glTF
         // accessors over one buffer, each a part of its own).
         self.stored += (mesh.positions.len() + mesh.triangles.len()) as u64;
-        if self.stored > MAX_STORED {
+        let limits = &options.limits;
+        if self.stored > limits.geometry {
             return Err(LoadError::file(
                 path,
-                format!(
-                    "the scene's meshes come to more than {MAX_STORED} vertices and triangles stored"
+                limits.exceeded(
+                    Limit::Geometry,
+                    format!(
+                        "the scene's meshes come to {} vertices and triangles stored",
+                        self.stored
+                    ),
                 ),
             ));
         }
@@ -146,7 +149,13 @@ impl MeshFiles {
             // The parts of a serialized file are its shapes, by index.
             Some("serialized") => {
                 let index = crate::serialized::shape_index(part, path)?;
-                crate::serialized::parse_serialized(&read(path, fingerprint)?, index, path)?.mesh
+                // The shape's counts are checked against what the budget has left.
+                let left = Limits {
+                    geometry: options.limits.geometry.saturating_sub(self.stored),
+                    ..options.limits
+                };
+                let bytes = read(path, fingerprint)?;
+                crate::serialized::parse_serialized_within(&bytes, index, path, &left)?.mesh
             }
             _ => {
                 return Err(LoadError::file(

@@ -9,6 +9,8 @@ pub struct LoadOptions {
     /// Refuse absolute paths and paths that climb out of the scene's folder with `..`
     /// (for scenes from untrusted sources).
     pub sandbox: bool,
+    /// The budgets the scene is held to.
+    pub limits: crate::limits::Limits,
 }
 
 /// `name` (as written in a scene file) resolved against `base_dir`; with `options.sandbox`, an
@@ -98,7 +100,10 @@ mod tests {
 
     #[test]
     fn the_sandbox_keeps_paths_inside() {
-        let sandbox = LoadOptions { sandbox: true };
+        let sandbox = LoadOptions {
+            sandbox: true,
+            ..LoadOptions::default()
+        };
         let base = Path::new("scenes");
         assert_eq!(
             resolve(base, "a/b.obj", &sandbox).unwrap(),

@@ -38,7 +38,7 @@
 //! Every size in the file is checked before it is used. The shape count must fit the file, the
 //! dictionary's offsets must start at 0, increase, and lie before the dictionary, and each shape
 //! must start with the file's id and version. A shape's vertex and triangle counts must fit
-//! lucent's budget ([`MAX_STORED`] vertices and triangles) and their arrays must be bytes that
+//! the scene's geometry budget (`Limits::geometry` vertices and triangles) and their arrays must be bytes that
 //! its compressed stream may inflate to ([`MAX_RATIO`]) before a byte of the arrays is read.
 //! The stream is then inflated [`CHUNK`] bytes at a time, the arrays grow only as their bytes
 //! arrive, and inflating stops at the bytes the counts need: whatever follows is never inflated.
@@ -47,7 +47,7 @@
 //! every number must be finite in single precision.
 
 use crate::error::LoadError;
-use crate::mesh_file::MAX_STORED;
+use crate::limits::{Limit, Limits};
 use flate2::{Decompress, FlushDecompress, Status};
 use glam::{Vec2, Vec3};
 use lucent::Rgb;
@@ -132,15 +132,33 @@ pub fn shape_count(bytes: &[u8], path: &Path) -> Result<u32, LoadError> {
 
 /// Parses shape `index` of serialized bytes; `path` names them in errors.
 pub fn parse_serialized(bytes: &[u8], index: u32, path: &Path) -> Result<Shape, LoadError> {
-    decode(bytes, index, path, &mut 0)
+    parse_serialized_within(bytes, index, path, &Limits::DEFAULT)
 }
 
-/// [`parse_serialized`], adding the bytes inflated to `inflated` (for the tests' bounds).
-fn decode(bytes: &[u8], index: u32, path: &Path, inflated: &mut u64) -> Result<Shape, LoadError> {
+/// [`parse_serialized`] with a shape's vertices and triangles held, from its counts, to
+/// `limits.geometry` (what the scene's budget has left).
+pub fn parse_serialized_within(
+    bytes: &[u8],
+    index: u32,
+    path: &Path,
+    limits: &Limits,
+) -> Result<Shape, LoadError> {
+    decode(bytes, index, path, limits, &mut 0)
+}
+
+/// [`parse_serialized_within`], adding the bytes inflated to `inflated` (for the tests'
+/// bounds).
+fn decode(
+    bytes: &[u8],
+    index: u32,
+    path: &Path,
+    limits: &Limits,
+    inflated: &mut u64,
+) -> Result<Shape, LoadError> {
     let dictionary = Dictionary::read(bytes, path)?;
     let stream = dictionary.stream(bytes, index, path)?;
     let mut z = Inflater::new(stream, path, index);
-    let shape = read_shape(&mut z, dictionary.version);
+    let shape = read_shape(&mut z, dictionary.version, limits);
     *inflated += z.z.total_out();
     shape
 }
@@ -269,7 +287,7 @@ fn u32_at(bytes: &[u8], at: usize) -> u32 {
 }
 
 /// The shape in the inflater's stream.
-fn read_shape(z: &mut Inflater, version: u16) -> Result<Shape, LoadError> {
+fn read_shape(z: &mut Inflater, version: u16, limits: &Limits) -> Result<Shape, LoadError> {
     let flags = u32::from_le_bytes(z.take("the flags")?);
     if flags & !KNOWN != 0 {
         return Err(z.error(format!(
@@ -294,9 +312,10 @@ fn read_shape(z: &mut Inflater, version: u16) -> Result<Shape, LoadError> {
     };
     let vertices = u64::from_le_bytes(z.take("the vertex count")?);
     let triangles = u64::from_le_bytes(z.take("the triangle count")?);
-    if vertices.saturating_add(triangles) > MAX_STORED {
-        return Err(z.error(format!(
-            "it claims {vertices} vertices and {triangles} triangles, more than lucent's budget of {MAX_STORED} vertices and triangles"
+    if vertices.saturating_add(triangles) > limits.geometry {
+        return Err(z.error(limits.exceeded(
+            Limit::Geometry,
+            format!("it claims {vertices} vertices and {triangles} triangles"),
         )));
     }
     let has = |flag: u32| flags & flag != 0;

@@ -49,7 +49,10 @@ use watch::{CAP, run_watched};
 /// Bytes kept of each shared mesh: its header and a few thousand lines.
 const HEAD: usize = 64 << 10;
 /// Loads are sandboxed: a mutated file can name only the files of its own folder.
-const SANDBOX: LoadOptions = LoadOptions { sandbox: true };
+const SANDBOX: LoadOptions = LoadOptions {
+    sandbox: true,
+    limits: lucent_scene::Limits::DEFAULT,
+};
 
 // ---------------------------------------------------------------------------------------------
 // The run.

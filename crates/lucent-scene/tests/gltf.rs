@@ -793,7 +793,10 @@ fn the_sandbox_refuses_a_buffer_outside_the_folder() {
     std::fs::write(dir.path("x.bin"), &a.bin).unwrap();
     let path = dir.path("scenes/escape.gltf");
     std::fs::write(&path, a.json(Some("../x.bin"), &rest)).unwrap();
-    let sandbox = LoadOptions { sandbox: true };
+    let sandbox = LoadOptions {
+        sandbox: true,
+        ..LoadOptions::default()
+    };
     assert_refused(
         &path,
         &sandbox,

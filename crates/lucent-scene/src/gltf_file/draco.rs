@@ -3,7 +3,7 @@
 //! scene's mesh budget. The extension names, for each glTF attribute, the Draco attribute
 //! (by unique id) that holds it.
 
-use crate::mesh_file::MAX_STORED;
+use crate::limits::Limits;
 use draco_core::{DataType, DecodeLimits, DecoderBuffer, MeshDecoder, PointAttribute};
 use glam::{Vec2, Vec3, Vec4};
 use lucent::Rgb;
@@ -19,8 +19,8 @@ const MAX_DECODED_BYTES: u64 = 1 << 30;
 /// not read from the stream.
 pub(super) fn decode(bytes: &[u8], attributes: &Value, uv_set: u32) -> Result<Mesh, String> {
     let limits = DecodeLimits::default()
-        .with_max_points(MAX_STORED)
-        .with_max_faces(MAX_STORED)
+        .with_max_points(Limits::DEFAULT.geometry)
+        .with_max_faces(Limits::DEFAULT.geometry)
         .with_max_decoded_bytes(MAX_DECODED_BYTES);
     let mut buffer = DecoderBuffer::new(bytes).with_limits(limits);
     let mut mesh = draco_core::Mesh::new();

@@ -11,8 +11,10 @@
 
 use crate::error::{LoadError, line_column};
 use crate::hash::Fingerprint;
+use crate::limits::Limit;
 use crate::paths::{LoadOptions, resolve};
 use std::cell::Cell;
+use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -29,11 +31,6 @@ pub const MAX_SUBSTITUTED: usize = 64 << 20;
 /// shape, twosided, bsdf, texture, transform, operation); the bound keeps the recursive
 /// readers (and the tree's recursive drop) within any thread's stack on hostile input.
 pub const MAX_NESTING: usize = 100;
-
-/// Most bytes of XML a scene may read, includes counted each time they are included: a file
-/// that includes another a thousand times, which includes a third a thousand times, would
-/// otherwise splice in a billion elements.
-pub const MAX_READ: usize = 64 << 20;
 
 /// Where something is: a file and a 1-based line and column (in characters).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -145,8 +142,10 @@ pub fn load(
         depth: 0,
         substituted: Cell::new(0),
         read: 0,
+        texts: HashMap::new(),
     };
-    loader.file(path, None)
+    let text = loader.text(path, None)?;
+    loader.file(path, &text, None)
 }
 
 /// A file being read, for the include chain.
@@ -179,48 +178,84 @@ struct Loader<'a> {
     depth: usize,
     /// The bytes `$name`s have added so far.
     substituted: Cell<usize>,
-    /// The bytes of XML read so far, includes counted each time.
-    read: usize,
+    /// The bytes of XML read so far, includes counted each time (held to
+    /// `options.limits.xml_bytes`: a file that includes another a thousand times, which
+    /// includes a third a thousand times, would otherwise splice in a billion elements).
+    read: u64,
+    /// Each file's text and canonical path, by the path it was reached by: a file included
+    /// many times is read from disk once.
+    texts: HashMap<PathBuf, Rc<Text>>,
+}
+
+/// A file's text, read once.
+struct Text {
+    /// Its canonical path (see [`Opened`]).
+    key: PathBuf,
+    text: String,
 }
 
 impl Loader<'_> {
-    /// The root element of the file at `path` (included from `from`), read in full.
-    fn file(&mut self, path: &Path, from: Option<&Loc>) -> Result<Element, LoadError> {
-        let bytes = crate::input::read(path).map_err(|e| match from {
-            Some(at) => at.error(format!(
-                "cannot read the included file `{}`: {e}",
-                path.display()
-            )),
-            None => LoadError::file(path, format!("cannot read the scene file: {e}")),
-        })?;
-        self.read += bytes.len();
-        if self.read > MAX_READ {
-            let message = format!(
-                "the scene and its includes come to more than {} MiB of XML",
-                MAX_READ >> 20
-            );
-            return Err(match from {
-                Some(at) => at.error(message),
-                None => LoadError::file(path, message),
-            });
+    /// The text of the file at `path` (included from `from`), read from disk the first time
+    /// (and its bytes added to the fingerprint then), and counted against the XML budget each
+    /// time, before it is parsed.
+    fn text(&mut self, path: &Path, from: Option<&Loc>) -> Result<Rc<Text>, LoadError> {
+        let at = |message: String| match from {
+            Some(at) => at.error(message),
+            None => LoadError::file(path, message),
+        };
+        let text = match self.texts.get(path) {
+            Some(t) => Rc::clone(t),
+            None => {
+                let bytes = crate::input::read(path).map_err(|e| match from {
+                    Some(_) => at(format!(
+                        "cannot read the included file `{}`: {e}",
+                        path.display()
+                    )),
+                    None => at(format!("cannot read the scene file: {e}")),
+                })?;
+                self.inputs.add(&bytes);
+                let text = String::from_utf8(bytes).map_err(|e| {
+                    LoadError::file(path, format!("the file is not UTF-8 text: {e}"))
+                })?;
+                let t = Rc::new(Text {
+                    key: Opened::new(path).key,
+                    text,
+                });
+                self.texts.insert(path.to_path_buf(), Rc::clone(&t));
+                t
+            }
+        };
+        self.read += text.text.len() as u64;
+        let limits = &self.options.limits;
+        if self.read > limits.xml_bytes {
+            return Err(at(limits.exceeded(
+                Limit::Xml,
+                format!(
+                    "the scene and its includes come to {} MiB of XML",
+                    self.read.div_ceil(1 << 20)
+                ),
+            )));
         }
-        self.inputs.add(&bytes);
-        let text = String::from_utf8(bytes)
-            .map_err(|e| LoadError::file(path, format!("the file is not UTF-8 text: {e}")))?;
+        Ok(text)
+    }
+
+    /// The root element of the file at `path` (included from `from`), of text `text`.
+    fn file(&mut self, path: &Path, text: &Text, from: Option<&Loc>) -> Result<Element, LoadError> {
+        let text = text.text.as_str();
         let file: Rc<Path> = Rc::from(path);
-        if let Some(at) = too_deep(&text) {
-            let (line, column) = line_column(&text, at);
+        if let Some(at) = too_deep(text) {
+            let (line, column) = line_column(text, at);
             return Err(LoadError {
                 file: path.to_path_buf(),
                 position: Some((line, column)),
                 message: format!("elements are nested more than {MAX_NESTING} deep"),
             });
         }
-        let doc = roxmltree::Document::parse(&text).map_err(|e| xml_error(path, &e))?;
+        let doc = roxmltree::Document::parse(text).map_err(|e| xml_error(path, &e))?;
         let root = doc.root_element();
         let src = Src {
             file: &file,
-            text: &text,
+            text,
             line_starts: std::iter::once(0)
                 .chain(text.match_indices('\n').map(|(i, _)| i + 1))
                 .collect(),
@@ -330,12 +365,16 @@ impl Loader<'_> {
         let name = el.require("filename")?;
         let path = resolve(&self.base_dir, &name.value, self.options)
             .map_err(|message| name.loc.error(message))?;
-        if !path.is_file() {
+        if !self.texts.contains_key(&path) && !path.is_file() {
             return Err(name
                 .loc
                 .error(format!("included file `{}` not found", path.display())));
         }
-        let opened = Opened::new(&path);
+        let text = self.text(&path, Some(&el.loc))?;
+        let opened = Opened {
+            key: text.key.clone(),
+            shown: path.clone(),
+        };
         if let Some(first) = self.chain.iter().position(|o| o.key == opened.key) {
             let names: Vec<String> = self.chain[first..]
                 .iter()
@@ -352,7 +391,7 @@ impl Loader<'_> {
             )));
         }
         self.chain.push(opened);
-        let root = self.file(&path, Some(&el.loc));
+        let root = self.file(&path, &text, Some(&el.loc));
         self.chain.pop();
         let root = root?;
         Ok(if root.tag == "scene" {

@@ -143,7 +143,13 @@ fn parse(bytes: &[u8], index: u32) -> Result<Shape, LoadError> {
 /// The error of shape `index` of `bytes`, with the bytes inflated on the way.
 fn refused(bytes: &[u8], index: u32) -> (LoadError, u64) {
     let mut inflated = 0;
-    match decode(bytes, index, Path::new("t.serialized"), &mut inflated) {
+    match decode(
+        bytes,
+        index,
+        Path::new("t.serialized"),
+        &Limits::DEFAULT,
+        &mut inflated,
+    ) {
         Ok(_) => panic!("shape {index} should be refused"),
         Err(e) => {
             assert!(!e.to_string().contains('\n'), "{e}");
@@ -278,13 +284,13 @@ fn a_vertex_count_of_2_to_the_60_is_refused_before_anything_is_allocated() {
     assert!(began.elapsed().as_secs_f32() < 1.0);
     assert!(
         e.message.starts_with(
-            "shape 0: it claims 1152921504606846976 vertices and 4 triangles, more than lucent's budget"
+            "shape 0: it claims 1152921504606846976 vertices and 4 triangles, over the budget of 134217728 (`--limit geometry=N` raises it)"
         ),
         "{e}"
     );
     assert!(inflated <= CHUNK as u64, "{inflated}");
     // The triangle count too, and the two together.
-    for counts in [(4, u64::MAX), (MAX_STORED, 1)] {
+    for counts in [(4, u64::MAX), (Limits::DEFAULT.geometry, 1)] {
         let mut d = tetra(SINGLE);
         d.counts = Some(counts);
         let (e, _) = refused(&file(3, &[d]), 0);
@@ -352,7 +358,7 @@ fn a_stream_longer_than_its_counts_is_inflated_no_further() {
     let bytes = file_of(4, &[stream]);
     let mut inflated = 0;
     let began = Instant::now();
-    let s = decode(&bytes, 0, Path::new("t"), &mut inflated).unwrap();
+    let s = decode(&bytes, 0, Path::new("t"), &Limits::DEFAULT, &mut inflated).unwrap();
     assert_eq!(s.mesh.triangles.len(), 4);
     assert!(inflated <= CHUNK as u64, "{inflated}");
     assert!(began.elapsed().as_secs_f32() < 1.0);

@@ -165,7 +165,10 @@ pub fn open() -> LoadOptions {
 }
 
 pub fn sandboxed() -> LoadOptions {
-    LoadOptions { sandbox: true }
+    LoadOptions {
+        sandbox: true,
+        ..LoadOptions::default()
+    }
 }
 
 /// The import of the file at `path`.
