@@ -156,6 +156,29 @@ pub fn import_gltf(
     let mut lights = Vec::new();
     let mut camera: Option<(CameraDesc, Option<f32>)> = None;
     let nodes: Vec<gltf::Node> = doc.nodes().collect();
+    // Each placed triangle primitive is an object: held to the budget before any is decoded.
+    let placed_primitives: u64 = placed
+        .iter()
+        .filter_map(|&(i, _)| nodes[i].mesh())
+        .flat_map(|m| m.primitives())
+        .filter(|p| {
+            use gltf::mesh::Mode;
+            matches!(
+                p.mode(),
+                Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+            )
+        })
+        .count() as u64;
+    let limits = &options.limits;
+    if placed_primitives > limits.objects {
+        return Err(LoadError::file(
+            path,
+            limits.exceeded(
+                crate::limits::Limit::Objects,
+                format!("the scene places {placed_primitives} triangle primitives, an object each"),
+            ),
+        ));
+    }
     for &(i, world) in &placed {
         let node = &nodes[i];
         if let Some(mesh) = node.mesh() {

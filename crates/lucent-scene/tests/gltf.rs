@@ -255,6 +255,43 @@ fn transform(o: &ObjectDesc) -> Mat4 {
 }
 
 #[test]
+fn placed_primitives_are_held_to_the_objects_budget_before_any_is_decoded() {
+    // One triangle placed by 300 nodes: 300 objects.
+    let dir = Dir::new("objects-budget");
+    let mut a = Asset::default();
+    let pos = a.positions(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let nodes: Vec<String> = (0..300)
+        .map(|i| format!(r#"{{"mesh": 0, "translation": [{i}, 0, 0]}}"#))
+        .collect();
+    let roots: Vec<String> = (0..300).map(|i| i.to_string()).collect();
+    let rest = format!(
+        r#""scene": 0, "scenes": [{{"nodes": [{}]}}], "nodes": [{}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": {pos}}}}}]}}]"#,
+        roots.join(", "),
+        nodes.join(", ")
+    );
+    let file = a.write_embedded(&dir, "many.gltf", &rest);
+    let limited = |n: u64| LoadOptions {
+        limits: lucent_scene::Limits {
+            objects: n,
+            ..Default::default()
+        },
+        ..LoadOptions::default()
+    };
+    let e = import_gltf(&file, &limited(200), &mut Fingerprint::default())
+        .err()
+        .expect("over the budget");
+    assert!(
+        e.message.contains(
+            "the scene places 300 triangle primitives, an object each, over the budget of 200"
+        ),
+        "{e}"
+    );
+    let imported = import_gltf(&file, &limited(300), &mut Fingerprint::default()).unwrap();
+    assert_eq!(imported.desc.objects.len(), 300);
+}
+
+#[test]
 fn a_hierarchy_places_its_triangles_where_the_transforms_say() {
     let dir = Dir::new("hierarchy");
     let (a, rest) = hierarchy();

@@ -87,6 +87,26 @@ pub(super) fn schlick(f0: Rgb, cos: f32) -> Rgb {
 }
 
 impl GltfPbr {
+    /// Base colour `base_color`, metalness `metallic` and isotropic GGX roughness `alpha`, and
+    /// glTF's defaults for the rest: index 1.5, full specular, no transmission, film or
+    /// diffuse transmission.
+    pub fn plain(base_color: Rgb, metallic: f32, alpha: f32) -> Self {
+        Self {
+            base_color,
+            metallic,
+            alpha: Vec2::splat(alpha),
+            ior: 1.5,
+            specular: 1.0,
+            specular_color: Rgb::WHITE,
+            transmission: 0.0,
+            iridescence: 0.0,
+            film_ior: 1.3,
+            film_thickness: 400,
+            volume: false,
+            diffuse_transmission: 0,
+        }
+    }
+
     /// The microfacets.
     fn microfacet(&self) -> Microfacet {
         Microfacet::new(Distribution::Ggx, self.alpha.x, self.alpha.y)
@@ -361,20 +381,7 @@ mod tests {
     use super::*;
 
     fn pbr(base: Rgb, metallic: f32, roughness: f32) -> GltfPbr {
-        GltfPbr {
-            base_color: base,
-            metallic,
-            alpha: Vec2::splat(roughness * roughness),
-            ior: 1.5,
-            specular: 1.0,
-            specular_color: Rgb::WHITE,
-            transmission: 0.0,
-            iridescence: 0.0,
-            film_ior: 1.3,
-            film_thickness: 400,
-            volume: false,
-            diffuse_transmission: 0,
-        }
+        GltfPbr::plain(base, metallic, roughness * roughness)
     }
 
     #[test]

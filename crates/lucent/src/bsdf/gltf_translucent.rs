@@ -77,18 +77,8 @@ mod tests {
 
     fn sheet(color: Rgb, specular: f32) -> GltfTranslucent {
         GltfTranslucent(GltfPbr {
-            base_color: color,
-            metallic: 0.0,
-            alpha: Vec2::splat(0.25),
-            ior: 1.5,
             specular,
-            specular_color: Rgb::WHITE,
-            transmission: 0.0,
-            iridescence: 0.0,
-            film_ior: 1.3,
-            film_thickness: 400,
-            volume: false,
-            diffuse_transmission: 0,
+            ..GltfPbr::plain(color, 0.0, 0.25)
         })
     }
 

@@ -70,20 +70,7 @@ fn disney_and_gltf(base: Rgb) -> Vec<(String, Bsdf<'static>)> {
         (format!("PrincipledThin {name}"), Bsdf::PrincipledThin(p))
     };
     let g = |name: &str, f: &dyn Fn(&mut GltfPbr)| {
-        let mut p = GltfPbr {
-            base_color: base,
-            metallic: 0.0,
-            alpha: Vec2::splat(0.3),
-            ior: 1.5,
-            specular: 1.0,
-            specular_color: Rgb::WHITE,
-            transmission: 0.0,
-            iridescence: 0.0,
-            film_ior: 1.3,
-            film_thickness: 400,
-            volume: false,
-            diffuse_transmission: 0,
-        };
+        let mut p = GltfPbr::plain(base, 0.0, 0.3);
         f(&mut p);
         (format!("glTF {name}"), Bsdf::Gltf(p))
     };
