@@ -181,6 +181,15 @@ fn check_header(path: &Path, limits: &Limits) -> anyhow::Result<exr::meta::MetaD
             "{w}×{h} pixels, more than lucent renders"
         )));
     }
+    // A block (a tile or a band of scan lines) the header makes larger than the whole image
+    // (or than one 64 × 64 tile, which lucent writes) is a lie: the reader would allocate
+    // what each block claims before finding the bytes missing.
+    let block = header.max_block_byte_size() as u64;
+    if block > (w * h).max(64 * 64) * BYTES_PER_PIXEL {
+        return Err(not_ours(format!(
+            "blocks of {block} bytes in a {w}×{h} image"
+        )));
+    }
     let bytes = w * h * BYTES_PER_PIXEL;
     if bytes > limits.film_bytes {
         bail!(
@@ -388,5 +397,23 @@ mod tests {
         let (back, _) = read_film(&path, &Limits::default()).unwrap();
         assert_eq!(back.overflowed_pixels(), 0);
         assert!(back.pixel(0, 0).r >= 1e38 && back.pixel(0, 0).is_finite());
+    }
+
+    #[test]
+    fn a_header_claiming_blocks_larger_than_its_image_is_refused_before_its_pixels() {
+        // Found by the `film` fuzz target: a 20 × 12 film whose header gives tiles the reader
+        // would have allocated 1.9 GB for, each.
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../fuzz/seeds/film/oom-tile-claims-1.9-gb.exr");
+        let limits = Limits::default();
+        let Err(e) = read_film(&path, &limits) else {
+            panic!("a film of 1.9 GB blocks was read");
+        };
+        let e = e.to_string();
+        assert!(
+            e.contains("not a lucent partial film or checkpoint (blocks of"),
+            "{e}"
+        );
+        assert!(read_meta(&path, &limits).is_err());
     }
 }
