@@ -169,16 +169,12 @@ pub fn import_gltf(
             )
         })
         .count() as u64;
-    let limits = &options.limits;
-    if placed_primitives > limits.objects {
-        return Err(LoadError::file(
-            path,
-            limits.exceeded(
-                crate::limits::Limit::Objects,
-                format!("the scene places {placed_primitives} triangle primitives, an object each"),
-            ),
-        ));
-    }
+    options
+        .limits
+        .check(crate::limits::Limit::Objects, placed_primitives, |n| {
+            format!("the scene places {n} triangle primitives, an object each")
+        })
+        .map_err(|e| LoadError::file(path, e))?;
     for &(i, world) in &placed {
         let node = &nodes[i];
         if let Some(mesh) = node.mesh() {

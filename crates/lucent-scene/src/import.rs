@@ -107,19 +107,12 @@ pub fn import_obj(
     let obj = std::sync::Arc::new(crate::obj::parse_obj(&bytes, path)?);
     // One object per material used: held to the budget before any is made.
     let used = obj.used_materials();
-    let limits = &options.limits;
-    if used.len() as u64 > limits.objects {
-        return Err(LoadError::file(
-            path,
-            limits.exceeded(
-                crate::limits::Limit::Objects,
-                format!(
-                    "the file's faces use {} materials, an object each",
-                    used.len()
-                ),
-            ),
-        ));
-    }
+    options
+        .limits
+        .check(crate::limits::Limit::Objects, used.len() as u64, |n| {
+            format!("the file's faces use {n} materials, an object each")
+        })
+        .map_err(|e| LoadError::file(path, e))?;
     // The build takes its parts from this parse rather than reading the file again.
     files.keep_obj(path, obj.clone());
     let folder = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);

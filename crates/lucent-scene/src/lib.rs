@@ -83,15 +83,12 @@ fn within_objects_budget(
     desc: &SceneDesc,
     options: &LoadOptions,
 ) -> Result<(), LoadError> {
-    let n = desc.objects.len() as u64;
-    let limits = &options.limits;
-    if n > limits.objects {
-        return Err(LoadError::file(
-            path,
-            limits.exceeded(Limit::Objects, format!("the scene has {n} objects")),
-        ));
-    }
-    Ok(())
+    options
+        .limits
+        .check(Limit::Objects, desc.objects.len() as u64, |n| {
+            format!("the scene has {n} objects")
+        })
+        .map_err(|e| LoadError::file(path, e))
 }
 
 impl SceneFile {
