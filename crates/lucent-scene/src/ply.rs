@@ -213,6 +213,11 @@ fn parse_header(bytes: &[u8], path: &Path) -> Result<(Format, Vec<Element>, usiz
                 let count = count
                     .parse()
                     .map_err(|_| err(format!("element count `{count}` is not a number")))?;
+                // A second `vertex` would replace the first's positions while the faces were
+                // checked against the first's count (found by the ply fuzz target).
+                if elements.iter().any(|e| e.name == *name) {
+                    return Err(err(format!("a second `element {name}`")));
+                }
                 elements.push(Element {
                     name: name.to_string(),
                     count,
@@ -691,6 +696,13 @@ mod tests {
                 .contains("not finite")
         );
         assert!(parse(b"plx\n").unwrap_err().message.contains("end_header"));
+        let twice = ASCII.replace(
+            "element face 1\n",
+            "element vertex 2\nproperty float x\nelement face 1\n",
+        );
+        let e = parse(twice.as_bytes()).unwrap_err();
+        assert!(e.message.contains("a second `element vertex`"), "{e}");
+        assert_eq!(e.position.map(|p| p.0), Some(11), "{e}");
         let bad_word = ASCII.replace("0 1 0 255", "0 one 0 255");
         let e = parse(bad_word.as_bytes()).unwrap_err();
         assert_eq!(e.position, Some((17, 1)), "{e}");

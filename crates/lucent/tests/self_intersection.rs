@@ -81,6 +81,11 @@ fn spheres_small_and_large_near_and_far_from_the_origin() {
         (Vec3::new(1e5, -1e5, 3e4), 2.0),
         (Vec3::splat(1e-6), 1e-6),
         (Vec3::splat(1e6), 1e6),
+        // 1e7 out, where f32 coordinates are whole units apart: spheres tens to millions of
+        // units across (a unit sphere there is two ulps wide, out of reach of f32 world space).
+        (Vec3::splat(1e7), 100.0),
+        (Vec3::new(1e7, -1e7, 3e6), 20.0),
+        (Vec3::new(0.0, -1e7, 0.0), 1e7),
     ] {
         check_convex(
             &sphere_scene(Sphere { center, radius }),
@@ -109,6 +114,8 @@ fn meshes_small_and_large_near_and_far_from_the_origin() {
         (Vec3::splat(1e5), 1.0),
         (Vec3::splat(1e-6), 1e-6),
         (Vec3::splat(1e6), 1e6),
+        (Vec3::splat(1e7), 100.0),
+        (Vec3::new(-1e7, 1e7, 2e6), 1e3),
     ] {
         check_convex(
             &mesh_scene(placed(icosphere(3), radius, center)),
