@@ -79,7 +79,7 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
             x as f32 + dx,
             y as f32 + dy
         )?;
-        print_node(&mut out, &root, 1)?;
+        print_node(&mut out, &root, 1, scene.origin())?;
         writeln!(out, "  radiance {}", rgb(radiance))?;
         if radiance.is_finite() {
             value += radiance;
@@ -125,6 +125,12 @@ fn v3(v: glam::Vec3) -> String {
     format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z)
 }
 
+/// The scene's point `p` where the file has it: the scene is built relative to `origin`.
+fn at(p: glam::Vec3, origin: glam::DVec3) -> String {
+    let p = p.as_dvec3() + origin;
+    format!("({:.3}, {:.3}, {:.3})", p.x, p.y, p.z)
+}
+
 fn kind_name(k: RayKind) -> &'static str {
     match k {
         RayKind::Camera => "camera",
@@ -133,13 +139,18 @@ fn kind_name(k: RayKind) -> &'static str {
     }
 }
 
-fn print_node(out: &mut String, node: &RayNode, indent: usize) -> std::fmt::Result {
+fn print_node(
+    out: &mut String,
+    node: &RayNode,
+    indent: usize,
+    origin: glam::DVec3,
+) -> std::fmt::Result {
     let pad = "  ".repeat(indent);
     writeln!(
         out,
         "{pad}{} ray from {} along {}, weight {}",
         kind_name(node.kind),
-        v3(node.origin),
+        at(node.origin, origin),
         v3(node.dir),
         rgb(node.weight)
     )?;
@@ -153,7 +164,7 @@ fn print_node(out: &mut String, node: &RayNode, indent: usize) -> std::fmt::Resu
                 hit.material,
                 hit.t,
                 if hit.entering { "entering" } else { "leaving" },
-                v3(hit.point)
+                at(hit.point, origin)
             )?;
             for l in &node.lights {
                 if l.shadow.is_black() {
@@ -195,7 +206,7 @@ fn print_node(out: &mut String, node: &RayNode, indent: usize) -> std::fmt::Resu
         writeln!(out, "{pad}  {text}")?;
     }
     for c in &node.children {
-        print_node(out, c, indent + 1)?;
+        print_node(out, c, indent + 1, origin)?;
     }
     Ok(())
 }

@@ -70,7 +70,12 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
     if b.is_empty() {
         println!("bounds:      empty{infinite}");
     } else {
-        let v = |p: glam::Vec3| format!("[{:.4}, {:.4}, {:.4}]", p.x, p.y, p.z);
+        // In the file's world (the scene is built relative to a point near its camera).
+        let o = scene.origin();
+        let v = |p: glam::Vec3| {
+            let p = p.as_dvec3() + o;
+            format!("[{:.4}, {:.4}, {:.4}]", p.x, p.y, p.z)
+        };
         println!("bounds:      {} to {}{infinite}", v(b.min), v(b.max));
     }
     let s = &loaded.settings;

@@ -14,9 +14,11 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
     let job = Job::load(args.scene.as_deref(), &args.overrides())?;
     let loaded = job.loaded;
     let camera = &loaded.scene.camera;
+    // The viewer moves the camera in the built scene's coordinates.
+    let origin = loaded.scene.origin();
     let pose = Pose {
-        eye: job.camera.eye.0,
-        look_at: job.camera.look_at.0,
+        eye: (job.camera.eye.0 - origin).as_vec3(),
+        look_at: (job.camera.look_at.0 - origin).as_vec3(),
         up: job.camera.up.0,
         fov_degrees: job.camera.fov.0,
         lens: camera.lens(),

@@ -13,7 +13,7 @@
 //! --up z --view top     eye on +z,                  image up +y, image right +x
 //! ```
 
-use crate::desc::{CameraDesc, Finite, Vector};
+use crate::desc::{CameraDesc, Finite, Point, Vector};
 use glam::Vec3;
 use lucent::accel::Aabb;
 use std::fmt;
@@ -236,8 +236,8 @@ impl Framing {
             View::Top | View::Iso => Vec3::ZERO,
         };
         CameraDesc {
-            eye: Vector(center + (distance * v.back + lift)),
-            look_at: Vector(center),
+            eye: Point::from_single(center + (distance * v.back + lift)),
+            look_at: Point::from_single(center),
             up: Vector(v.up),
             fov: Finite(FRAMING_FOV),
             aperture: None,
@@ -427,7 +427,15 @@ mod tests {
 
     fn camera_of(f: Framing, width: u32, height: u32) -> Camera {
         let c = f.camera(bounds(), width, height);
-        Camera::new(c.eye.0, c.look_at.0, c.up.0, c.fov.0, width, height).unwrap()
+        Camera::new(
+            c.eye.0.as_vec3(),
+            c.look_at.0.as_vec3(),
+            c.up.0,
+            c.fov.0,
+            width,
+            height,
+        )
+        .unwrap()
     }
 
     #[test]
@@ -471,7 +479,7 @@ mod tests {
         let distance = radius / half.min(800.0 / 600.0 * half).atan().sin();
         let c = f.camera(b, 800, 600);
         assert_eq!(
-            c.eye.0,
+            c.eye.0.as_vec3(),
             b.center() + Vec3::new(0.0, 0.25 * radius, distance)
         );
         assert_eq!(c.up.0, Vec3::Y);
@@ -604,7 +612,15 @@ mod tests {
         for f in every_framing() {
             for b in [Aabb::EMPTY, Aabb::new(Vec3::ONE, Vec3::ONE)] {
                 let c = f.camera(b, 800, 600);
-                Camera::new(c.eye.0, c.look_at.0, c.up.0, c.fov.0, 800, 600).unwrap();
+                Camera::new(
+                    c.eye.0.as_vec3(),
+                    c.look_at.0.as_vec3(),
+                    c.up.0,
+                    c.fov.0,
+                    800,
+                    600,
+                )
+                .unwrap();
             }
         }
     }

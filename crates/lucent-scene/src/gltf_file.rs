@@ -58,7 +58,7 @@ mod source;
 
 use crate::desc::{
     CameraDesc, FalloffName, Finite, IntegratorName, LightDesc, LightKind, Matrix, ObjectDesc,
-    ObjectKind, SceneDesc, Vector,
+    ObjectKind, Point, SceneDesc, Vector,
 };
 use crate::error::LoadError;
 use crate::hash::Fingerprint;
@@ -262,7 +262,7 @@ pub fn import_gltf(
                     }
                     None => {
                         o.part = Some(Spanned::new(0..0, format!("{}/{}", key.0, key.1)));
-                        o.transform = Some(Spanned::new(0..0, Matrix(world)));
+                        o.transform = Some(Spanned::new(0..0, Matrix::from_single(world)));
                     }
                 }
                 objects.push(Spanned::new(0..0, o));
@@ -968,7 +968,7 @@ fn light(
         if !position.is_finite() {
             return Err("its node's position is not finite".into());
         }
-        d.position = Some(Spanned::new(0..0, Vector(position)));
+        d.position = Some(Spanned::new(0..0, Point::from_single(position)));
         d.falloff = Some(Spanned::new(0..0, FalloffName::Quadratic));
         if let Some(range) = l.range() {
             notes.push(format!(
@@ -1050,8 +1050,8 @@ fn camera_of(
         return Err("its node's transform is degenerate".into());
     }
     let camera = CameraDesc {
-        eye: Vector(eye),
-        look_at: Vector(eye + forward),
+        eye: Point::from_single(eye),
+        look_at: Point::from_single(eye + forward),
         up: Vector(up),
         fov: Finite(fov),
         aperture: None,

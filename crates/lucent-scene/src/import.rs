@@ -3,7 +3,7 @@
 //! a scene without a camera or lights gets.
 
 use crate::desc::{
-    CameraDesc, Color, Finite, LightDesc, LightKind, MaterialDesc, ObjectDesc, ObjectKind,
+    CameraDesc, Color, Finite, LightDesc, LightKind, MaterialDesc, ObjectDesc, ObjectKind, Point,
     SceneDesc, Vector,
 };
 use crate::error::LoadError;
@@ -32,8 +32,8 @@ pub fn placeholder_camera() -> Spanned<CameraDesc> {
     Spanned::new(
         0..0,
         CameraDesc {
-            eye: Vector(Vec3::Z),
-            look_at: Vector(Vec3::ZERO),
+            eye: Point(glam::DVec3::Z),
+            look_at: Point(glam::DVec3::ZERO),
             up: Vector(Vec3::Y),
             fov: Finite(45.0),
             aperture: None,

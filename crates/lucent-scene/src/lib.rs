@@ -283,10 +283,14 @@ impl SceneFile {
             self.preloaded.clone(),
         )?;
         if !self.camera_given {
-            let c = self.framing_camera(&loaded);
+            // Framed in the built scene's coordinates (its bounds are).
+            let c = &loaded.scene.camera;
+            let c = self
+                .framing
+                .camera(loaded.scene.bounds(), c.width(), c.height());
             loaded.scene.camera = lucent::camera::Camera::new(
-                c.eye.0,
-                c.look_at.0,
+                c.eye.0.as_vec3(),
+                c.look_at.0.as_vec3(),
                 c.up.0,
                 c.fov.0,
                 loaded.scene.camera.width(),
@@ -308,8 +312,14 @@ impl SceneFile {
     /// [`SceneFile::framing`] says.
     pub fn framing_camera(&self, loaded: &Loaded) -> desc::CameraDesc {
         let c = &loaded.scene.camera;
-        self.framing
-            .camera(loaded.scene.bounds(), c.width(), c.height())
+        let mut framed = self
+            .framing
+            .camera(loaded.scene.bounds(), c.width(), c.height());
+        // In the file's world, as a camera of the file would be.
+        let origin = loaded.scene.origin();
+        framed.eye.0 += origin;
+        framed.look_at.0 += origin;
+        framed
     }
 
     /// Names every file of the description from `dir` instead of the scene's folder (for a

@@ -251,7 +251,7 @@ fn hierarchy_world_positions() -> Vec<Vec3> {
 }
 
 fn transform(o: &ObjectDesc) -> Mat4 {
-    o.transform.as_ref().unwrap().get_ref().0
+    o.transform.as_ref().unwrap().get_ref().0.as_mat4()
 }
 
 #[test]
@@ -604,7 +604,7 @@ fn materials_lights_and_camera_are_described() {
     );
     assert_eq!(
         point.position.as_ref().unwrap().get_ref().0,
-        Vec3::new(0.0, 5.0, 0.0)
+        glam::DVec3::new(0.0, 5.0, 0.0)
     );
     let spot = d.lights[1].get_ref();
     assert!(
@@ -622,8 +622,8 @@ fn materials_lights_and_camera_are_described() {
 
     assert!(imported.camera_given);
     let c = d.camera.get_ref();
-    assert_eq!(c.eye.0, Vec3::new(0.0, 1.0, 10.0));
-    assert_eq!(c.look_at.0, Vec3::new(0.0, 1.0, 9.0));
+    assert_eq!(c.eye.0, glam::DVec3::new(0.0, 1.0, 10.0));
+    assert_eq!(c.look_at.0, glam::DVec3::new(0.0, 1.0, 9.0));
     assert_eq!(c.up.0, Vec3::Y);
     assert_eq!(c.fov.0, 0.8f32.to_degrees());
     assert_eq!(
@@ -913,7 +913,7 @@ fn singular_nodes_are_skipped_with_a_warning_and_keep_their_light() {
             .unwrap()
             .get_ref()
             .0,
-        Vec3::new(0.0, 3.0, 0.0)
+        glam::DVec3::new(0.0, 3.0, 0.0)
     );
     assert_eq!(
         imported.warnings,

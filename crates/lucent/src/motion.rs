@@ -17,7 +17,7 @@
 //! Times are seconds in `f64`, so that a display running for hours keeps its precision; the
 //! transform is `f32`, as the scene is. Angles are radians here (degrees in files).
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{Affine3A, DVec3, Quat, Vec3};
 use std::f64::consts::TAU;
 use std::fmt;
 use thiserror::Error;
@@ -229,6 +229,9 @@ pub struct Motion {
     repeat: Repeat,
     oscillate: Option<Oscillate>,
     orbit: Option<Orbit>,
+    /// The point the keys scale and rotate about (the origin unless a scene built relative to
+    /// its camera says where the world's origin went).
+    pivot: DVec3,
 }
 
 impl Motion {
@@ -316,7 +319,16 @@ impl Motion {
             repeat,
             oscillate,
             orbit,
+            pivot: DVec3::ZERO,
         })
+    }
+
+    /// This motion with its keys scaling and rotating about `pivot` instead of the origin:
+    /// `T(pivot) · K(t) · T(−pivot)`, worked out in double precision so that a pivot far away
+    /// (the world's origin, seen from a scene built relative to its camera) costs no detail.
+    pub fn with_keys_about(mut self, pivot: DVec3) -> Self {
+        self.pivot = pivot;
+        self
     }
 
     /// Keyframes only.
@@ -364,6 +376,11 @@ impl Motion {
     pub fn at(&self, t: f64) -> Affine3A {
         let t = finite_time(t);
         let mut m = self.keyed(t).affine();
+        if self.pivot != DVec3::ZERO {
+            let linear = glam::Mat3::from(m.matrix3).as_dmat3();
+            let moved = m.translation.as_dvec3() + self.pivot - linear * self.pivot;
+            m.translation = moved.as_vec3().into();
+        }
         if let Some(o) = &self.oscillate {
             m = Affine3A::from_translation(o.at(t)) * m;
         }
@@ -531,6 +548,26 @@ mod tests {
         // (1, 0, 1) to (1, 0, −1).
         let p = m.at(1.0).transform_point3(Vec3::ZERO);
         assert!((p - Vec3::new(1.0, 0.0, -1.0)).length() < 1e-5, "{p}");
+    }
+
+    #[test]
+    fn keys_about_a_far_pivot_turn_points_about_it() {
+        // A quarter turn about y through the world's origin, seen from a scene whose own origin
+        // is 1e7 out along x: the world's origin is at x = −1e7 there.
+        let turn = vec![Key::new(0.0).with_rotate_degrees(Vec3::new(0.0, 90.0, 0.0))];
+        let m = Motion::keyframes(turn, Repeat::Hold)
+            .unwrap()
+            .with_keys_about(DVec3::new(-1e7, 0.0, 0.0));
+        // The point at world (1e7 + 1, 0, 0), scene (1, 0, 0), goes to world (0, 0, −1e7 − 1),
+        // scene (−1e7, 0, −1e7 − 1): exact in double precision, rounded once to single.
+        let p = m.at(0.0).transform_point3(Vec3::X);
+        let want = Vec3::new(-1e7, 0.0, -1e7 - 1.0);
+        assert!((p - want).abs().max_element() <= 1.0, "{p}");
+        // About the origin (the default) nothing changes.
+        let plain = Motion::keyframes(vec![Key::new(0.0).with_translate(Vec3::Y)], Repeat::Hold)
+            .unwrap()
+            .with_keys_about(DVec3::ZERO);
+        assert_eq!(plain.at(0.0), Affine3A::from_translation(Vec3::Y));
     }
 
     #[test]

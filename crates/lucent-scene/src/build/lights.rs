@@ -66,9 +66,11 @@ pub fn add_lights(
                 })
         };
         let point = |ctx: &Context| -> Result<PointLight, LoadError> {
-            let position = required(ctx.source, l.span(), kind, "position", &d.position)?
-                .get_ref()
-                .0;
+            let position = ctx.local(
+                required(ctx.source, l.span(), kind, "position", &d.position)?
+                    .get_ref()
+                    .0,
+            );
             let falloff = match d.falloff.as_ref().map(|f| *f.get_ref()) {
                 None | Some(FalloffName::None) if sppm => Falloff::Quadratic,
                 None | Some(FalloffName::None) => Falloff::None,
@@ -133,7 +135,7 @@ pub fn add_lights(
                             ctx.image(file.get_ref(), file.span(), intensity, Encoding::Srgb)?;
                         ctx.builder.environment(Some(id));
                         if let Some(r) = &d.rotation {
-                            let to_image = environment_rotation(r.get_ref().0)
+                            let to_image = environment_rotation(r.get_ref().0.as_mat4())
                                 .ok_or_else(|| ctx.source.error(r.span(), "an environment's `rotation` must be a rotation: orthonormal columns, no mirror"))?;
                             ctx.builder.environment_rotation(to_image);
                         }

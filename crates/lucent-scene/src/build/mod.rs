@@ -18,6 +18,7 @@ use crate::error::{LoadError, Source};
 use crate::hash::Fingerprint;
 use crate::mesh_file::MeshFiles;
 use crate::paths::LoadOptions;
+use glam::DVec3;
 use lucent::Rgb;
 use lucent::accel::AccelKind;
 use lucent::camera::Camera;
@@ -90,9 +91,16 @@ pub struct Context<'a> {
     /// Rough coats already integrated, by (distribution, α, η) bits.
     pub coats: HashMap<(u8, u32, u32), std::sync::Arc<lucent::bsdf::RoughCoat>>,
     sheen_albedo: Option<std::sync::Arc<lucent::bsdf::SheenAlbedo>>,
+    /// Where the built scene's zero is in the file's world ([`scene_origin`]).
+    pub origin: DVec3,
 }
 
 impl Context<'_> {
+    /// The file's world point `p` in the built scene's coordinates.
+    pub fn local(&self, p: DVec3) -> glam::Vec3 {
+        (p - self.origin).as_vec3()
+    }
+
     /// The sheen's albedo table, tabulated once for every material with sheen.
     pub fn sheen_albedo(&mut self) -> std::sync::Arc<lucent::bsdf::SheenAlbedo> {
         self.sheen_albedo
@@ -202,13 +210,16 @@ pub fn build_with_files(
     let cam = desc.camera.get_ref();
     let (width, height) = (*desc.image.width.get_ref(), *desc.image.height.get_ref());
     let up = rescaled(cam.up.0);
-    let camera = Camera::new(cam.eye.0, cam.look_at.0, up, cam.fov.0, width, height)
+    let origin = scene_origin(cam.eye.0);
+    let (eye, look_at) = (
+        (cam.eye.0 - origin).as_vec3(),
+        (cam.look_at.0 - origin).as_vec3(),
+    );
+    let camera = Camera::new(eye, look_at, up, cam.fov.0, width, height)
         .and_then(|c| match cam.aperture {
             None => Ok(c),
             Some(a) => {
-                let focus = cam
-                    .focus_distance
-                    .map_or((cam.look_at.0 - cam.eye.0).length(), |f| f.0);
+                let focus = cam.focus_distance.map_or((look_at - eye).length(), |f| f.0);
                 c.with_lens(a.0, focus)
             }
         })
@@ -236,8 +247,9 @@ pub fn build_with_files(
         ));
     }
     let mut builder = SceneBuilder::new(camera);
+    builder.origin(origin);
     if let Some(m) = &cam.motion {
-        builder.camera_motion(motion::motion(source, m)?);
+        builder.camera_motion(motion::motion(source, m, origin)?);
     }
     builder
         .background(desc.world.background.0)
@@ -268,6 +280,7 @@ pub fn build_with_files(
         images: HashMap::new(),
         coats: HashMap::new(),
         sheen_albedo: None,
+        origin,
     };
     ctx.inputs.add(source.text.as_bytes());
 
@@ -360,6 +373,20 @@ pub fn build_with_files(
         inputs: inputs.value(),
         warnings,
     })
+}
+
+/// The spacing of the points a scene may be rebased to: a power of two, so that every scene
+/// whose eye is within half of it of the world's origin is built exactly as written.
+const ORIGIN_GRID: f64 = 1024.0;
+
+/// Where the built scene's coordinates have their zero in the file's world, for a camera at
+/// `eye`: the multiple of [`ORIGIN_GRID`] nearest it. The file's positions are read in double
+/// precision and moved by it before they are rounded to single, so that what the camera sees is
+/// within about a grid step of the renderer's origin, where single precision is finest: a scene
+/// 1e7 from the world's origin (where a single-precision coordinate's step is 1) renders as it
+/// does at the origin.
+pub fn scene_origin(eye: DVec3) -> DVec3 {
+    (eye / ORIGIN_GRID).round() * ORIGIN_GRID
 }
 
 /// One warning per reason the classic integrators draw materials other than as written.

@@ -2,12 +2,18 @@
 
 use crate::desc::{MotionDesc, RepeatName};
 use crate::error::{LoadError, Source};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use lucent::motion::{Key, Motion, MotionError, MotionPart, Orbit, Oscillate, Repeat};
 use toml::Spanned;
 
-/// The motion `m` describes, checked.
-pub fn motion(source: &Source, m: &Spanned<MotionDesc>) -> Result<Motion, LoadError> {
+/// The motion `m` describes, checked, in a scene whose coordinates' zero is at `origin` in the
+/// file's world: its orbit's centre is moved as every point is, and its keys still scale and
+/// rotate about the world's origin.
+pub fn motion(
+    source: &Source,
+    m: &Spanned<MotionDesc>,
+    origin: DVec3,
+) -> Result<Motion, LoadError> {
     let d = m.get_ref();
     let keys = d
         .keys
@@ -42,7 +48,7 @@ pub fn motion(source: &Source, m: &Spanned<MotionDesc>) -> Result<Motion, LoadEr
     let orbit = d.orbit.as_ref().map(|o| {
         let o = o.get_ref();
         Orbit {
-            center: o.center.map_or(Vec3::ZERO, |c| c.0),
+            center: (o.center.map_or(DVec3::ZERO, |c| c.0) - origin).as_vec3(),
             axis: o
                 .axis
                 .as_ref()
@@ -51,10 +57,12 @@ pub fn motion(source: &Source, m: &Spanned<MotionDesc>) -> Result<Motion, LoadEr
             phase: degrees(o.phase),
         }
     });
-    Motion::new(keys, repeat, oscillate, orbit).map_err(|e| {
-        let span = span_of(d, &e).unwrap_or_else(|| m.span());
-        source.error(span, format!("motion: {e}"))
-    })
+    Motion::new(keys, repeat, oscillate, orbit)
+        .map(|m| m.with_keys_about(-origin))
+        .map_err(|e| {
+            let span = span_of(d, &e).unwrap_or_else(|| m.span());
+            source.error(span, format!("motion: {e}"))
+        })
 }
 
 /// Where in the table error `e` points.

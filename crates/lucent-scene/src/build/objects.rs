@@ -5,7 +5,7 @@ use super::lights::EmitterSurface;
 use super::{Context, RADIUS_RANGE, check, refuse_keys, required, rescaled, shapes, span};
 use crate::desc::{ObjectDesc, ObjectKind};
 use crate::error::LoadError;
-use glam::{Affine3A, Mat3, Vec3};
+use glam::{Affine3A, DVec3, Mat3, Vec3};
 use lucent::shape::{Mesh, Plane, Sphere, SphereMap, triangle};
 use std::collections::HashMap;
 use std::ops::Range;
@@ -85,9 +85,11 @@ pub fn add_object(
     let motion = moving(ctx, d, glows)?;
     match d.kind {
         ObjectKind::Sphere => {
-            let center = required(source, table.clone(), kind, "center", &d.center)?
-                .get_ref()
-                .0;
+            let center = ctx.local(
+                required(source, table.clone(), kind, "center", &d.center)?
+                    .get_ref()
+                    .0,
+            );
             let radius = required(source, table, kind, "radius", &d.radius)?;
             let r = radius.get_ref().0;
             check(
@@ -144,9 +146,11 @@ pub fn add_object(
             }))
         }
         ObjectKind::Plane => {
-            let point = required(source, table.clone(), kind, "point", &d.point)?
-                .get_ref()
-                .0;
+            let point = ctx.local(
+                required(source, table.clone(), kind, "point", &d.point)?
+                    .get_ref()
+                    .0,
+            );
             let normal = required(source, table.clone(), kind, "normal", &d.normal)?;
             let n = normal.get_ref().0;
             check(
@@ -166,7 +170,7 @@ pub fn add_object(
         }
         ObjectKind::Triangle => {
             let vertices = required(source, table, kind, "vertices", &d.vertices)?;
-            let v = vertices.get_ref().map(|p| p.0);
+            let v = vertices.get_ref().map(|p| ctx.local(p.0));
             let ok = triangle::double_area(v) > 0.0;
             check(
                 source,
@@ -270,7 +274,7 @@ fn moving(
     let Some(desc) = &d.motion else {
         return Ok(None);
     };
-    let m = super::motion::motion(ctx.source, desc)?;
+    let m = super::motion::motion(ctx.source, desc, ctx.origin)?;
     if glows && !m.is_static() {
         return Err(ctx.source.error(
             desc.span(),
@@ -301,19 +305,19 @@ fn placement(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<Affin
                 "give `transform` or `scale`/`rotate`/`translate`, not both",
             ));
         }
-        return invertible(
-            ctx,
-            Affine3A::from_mat4(t.get_ref().0),
-            t.span(),
-            "the transform",
+        let m = t.get_ref().0;
+        let rebased = Affine3A::from_mat3_translation(
+            glam::DMat3::from_mat4(m).as_mat3(),
+            ctx.local(m.w_axis.truncate()),
         );
+        return invertible(ctx, rebased, t.span(), "the transform");
     }
     let scale = d.scale.as_ref().map_or(Vec3::ONE, |s| s.get_ref().0);
     let deg = d.rotate.as_ref().map_or(Vec3::ZERO, |r| r.get_ref().0);
     let rotation = Mat3::from_rotation_z(deg.z.to_radians())
         * Mat3::from_rotation_y(deg.y.to_radians())
         * Mat3::from_rotation_x(deg.x.to_radians());
-    let translate = d.translate.as_ref().map_or(Vec3::ZERO, |t| t.get_ref().0);
+    let translate = ctx.local(d.translate.as_ref().map_or(DVec3::ZERO, |t| t.get_ref().0));
     let placed = Affine3A::from_translation(translate)
         * Affine3A::from_mat3(rotation)
         * Affine3A::from_scale(scale);

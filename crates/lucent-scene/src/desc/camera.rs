@@ -1,6 +1,6 @@
 //! The `[camera]` table.
 
-use super::{Finite, MotionDesc, Vector};
+use super::{Finite, MotionDesc, Point, Vector};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -10,9 +10,9 @@ use toml::Spanned;
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
     /// Where the eye is.
-    pub eye: Vector,
+    pub eye: Point,
     /// The point seen at the image's centre.
-    pub look_at: Vector,
+    pub look_at: Point,
     /// Which way is up in the image (default `[0, 1, 0]`).
     #[serde(default = "default_up")]
     pub up: Vector,

@@ -1,6 +1,6 @@
 //! `[[light]]` tables.
 
-use super::{Color, Finite, Matrix, Vector};
+use super::{Color, Finite, Matrix, Point, Vector};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -66,7 +66,7 @@ pub struct LightDesc {
     pub intensity: Option<Color>,
     /// Point, spot: where it is.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub position: Option<Spanned<Vector>>,
+    pub position: Option<Spanned<Point>>,
     /// Point, spot: `"none"` (default) or `"quadratic"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub falloff: Option<Spanned<FalloffName>>,

@@ -21,7 +21,7 @@ pub use motion::{KeyDesc, MotionDesc, OrbitDesc, OscillateDesc, RepeatName};
 pub use object::{ObjectDesc, ObjectKind};
 pub use settings::{ImageDesc, IntegratorName, RenderDesc, WorldDesc};
 pub use texture::{ImageMapDesc, TextureDesc};
-pub use values::{Color, Finite, Matrix, Scale, Vector};
+pub use values::{Color, Finite, Matrix, Point, Scale, Vector};
 
 use serde::{Deserialize, Serialize};
 use toml::Spanned;

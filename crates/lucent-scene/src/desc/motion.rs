@@ -13,7 +13,7 @@
 //! Plain structs with optional keys (not tagged enums, which lose the place of an error);
 //! checked, and turned into a [`lucent::motion::Motion`], in [`crate::build`].
 
-use super::{Finite, Scale, Vector};
+use super::{Finite, Point, Scale, Vector};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -71,7 +71,7 @@ pub struct KeyDesc {
 pub struct OrbitDesc {
     /// A point on the axis (default the origin).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub center: Option<Vector>,
+    pub center: Option<Point>,
     /// The axis's direction (default `[0, 1, 0]`); counter-clockwise seen from its tip.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axis: Option<Spanned<Vector>>,

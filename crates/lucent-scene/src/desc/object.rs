@@ -1,6 +1,6 @@
 //! `[[object]]` tables.
 
-use super::{Finite, Matrix, MotionDesc, Scale, Vector};
+use super::{Finite, Matrix, MotionDesc, Point, Scale, Vector};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -53,7 +53,7 @@ pub struct ObjectDesc {
     pub material: Spanned<String>,
     /// Sphere: centre.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub center: Option<Spanned<Vector>>,
+    pub center: Option<Spanned<Point>>,
     /// Sphere: radius, > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<Spanned<Finite>>,
@@ -65,13 +65,13 @@ pub struct ObjectDesc {
     pub uv_axes: Option<Spanned<[Vector; 3]>>,
     /// Plane: a point on it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub point: Option<Spanned<Vector>>,
+    pub point: Option<Spanned<Point>>,
     /// Plane: its normal (non-zero; the front side).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal: Option<Spanned<Vector>>,
     /// Triangle: three corners, counter-clockwise seen from the front.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub vertices: Option<Spanned<[Vector; 3]>>,
+    pub vertices: Option<Spanned<[Point; 3]>>,
     /// Mesh: an OBJ, PLY, glTF or GLB file, relative to the scene file's folder.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<Spanned<String>>,
@@ -95,7 +95,7 @@ pub struct ObjectDesc {
     pub transform: Option<Spanned<Matrix>>,
     /// Placement: moved by this after rotating.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub translate: Option<Spanned<Vector>>,
+    pub translate: Option<Spanned<Point>>,
     /// Placement: rotated by these angles in degrees about x, then y, then z, after scaling.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotate: Option<Spanned<Vector>>,

@@ -2,7 +2,7 @@
 //!
 //! Each checks itself while it is read, so a bad value is reported at its own line and column.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use lucent::Rgb;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize, Serializer};
@@ -12,9 +12,15 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
 pub struct Finite(pub f32);
 
-/// Three finite numbers `[x, y, z]`.
+/// Three finite numbers `[x, y, z]`: a direction or a displacement.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Vector(pub Vec3);
+
+/// A position `[x, y, z]`, kept in double precision: the build subtracts the scene's origin
+/// (near the camera) before rounding to the renderer's single precision, so that a scene far
+/// from the world's origin keeps its detail (see `docs/design.md`, "Far from the origin").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point(pub DVec3);
 
 /// A linear RGB colour: one non-negative number for grey, or `[r, g, b]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,14 +31,14 @@ pub struct Color(pub Rgb);
 pub struct Scale(pub Vec3);
 
 /// A 4 × 4 affine transform: 16 finite numbers, row by row (the last row `[0, 0, 0, 1]`),
-/// applied to column vectors: `p' = M·p`.
+/// applied to column vectors: `p' = M·p`; in double precision, as [`Point`]s are.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Matrix(pub glam::Mat4);
+pub struct Matrix(pub glam::DMat4);
 
-fn finite<E: de::Error>(v: f64) -> Result<f32, E> {
-    let f = v as f32;
-    if f.is_finite() {
-        Ok(f)
+/// `v` if it is finite and within single precision's range (every value ends up there).
+fn finite_wide<E: de::Error>(v: f64) -> Result<f64, E> {
+    if (v as f32).is_finite() {
+        Ok(v)
     } else if v.is_nan() {
         Err(E::custom("expected a finite number, found NaN"))
     } else {
@@ -50,8 +56,8 @@ struct Numbers<const N: usize> {
 }
 
 enum Read<const N: usize> {
-    Scalar(f32),
-    Array([f32; N]),
+    Scalar(f64),
+    Array([f64; N]),
 }
 
 impl<'de, const N: usize> Visitor<'de> for Numbers<N> {
@@ -65,7 +71,7 @@ impl<'de, const N: usize> Visitor<'de> for Numbers<N> {
         if !self.scalar_ok {
             return Err(E::invalid_type(de::Unexpected::Float(v), &self));
         }
-        finite(v).map(Read::Scalar)
+        finite_wide(v).map(Read::Scalar)
     }
 
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
@@ -85,7 +91,7 @@ impl<'de, const N: usize> Visitor<'de> for Numbers<N> {
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
         let mut out = [0.0; N];
         for (i, slot) in out.iter_mut().enumerate() {
-            let Some(Finite(v)) = seq.next_element()? else {
+            let Some(Wide(v)) = seq.next_element()? else {
                 return Err(de::Error::invalid_length(i, &self));
             };
             *slot = v;
@@ -101,31 +107,40 @@ impl<'de, const N: usize> Visitor<'de> for Numbers<N> {
     }
 }
 
+/// A finite number kept in double precision (an element of a [`Point`] or [`Matrix`]).
+struct Wide(f64);
+
+impl<'de> Deserialize<'de> for Wide {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(FiniteVisitor).map(Wide)
+    }
+}
+
 struct FiniteVisitor;
 
 impl Visitor<'_> for FiniteVisitor {
-    type Value = Finite;
+    type Value = f64;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
         f.write_str("a finite number")
     }
 
-    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Finite, E> {
-        finite(v).map(Finite)
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<f64, E> {
+        finite_wide(v)
     }
 
-    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Finite, E> {
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<f64, E> {
         self.visit_f64(v as f64)
     }
 
-    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Finite, E> {
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<f64, E> {
         self.visit_f64(v as f64)
     }
 }
 
 impl<'de> Deserialize<'de> for Finite {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        d.deserialize_any(FiniteVisitor)
+        d.deserialize_any(FiniteVisitor).map(|v| Finite(v as f32))
     }
 }
 
@@ -135,8 +150,37 @@ impl<'de> Deserialize<'de> for Vector {
             what: "a vector [x, y, z] of finite numbers",
             scalar_ok: false,
         })? {
-            Read::Array(v) => Ok(Vector(Vec3::from_array(v))),
-            Read::Scalar(v) => Ok(Vector(Vec3::splat(v))), // not reached: the visitor refuses scalars
+            Read::Array(v) => Ok(Vector(DVec3::from_array(v).as_vec3())),
+            Read::Scalar(_) => unreachable!("the visitor refuses scalars"),
+        }
+    }
+}
+
+impl Point {
+    /// The point at single-precision `v`, each coordinate the shortest decimal that reads back
+    /// as it (so that a converted scene says `0.8`, not `0.800000011920929`).
+    pub fn from_single(v: Vec3) -> Self {
+        Point(DVec3::from_array(v.to_array().map(shortest)))
+    }
+}
+
+impl Matrix {
+    /// The transform `m`, its entries as [`Point::from_single`] takes them.
+    pub fn from_single(m: glam::Mat4) -> Self {
+        Matrix(glam::DMat4::from_cols_array(
+            &m.to_cols_array().map(shortest),
+        ))
+    }
+}
+
+impl<'de> Deserialize<'de> for Point {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        match d.deserialize_any(Numbers::<3> {
+            what: "a vector [x, y, z] of finite numbers",
+            scalar_ok: false,
+        })? {
+            Read::Array(v) => Ok(Point(DVec3::from_array(v))),
+            Read::Scalar(_) => unreachable!("the visitor refuses scalars"),
         }
     }
 }
@@ -147,8 +191,8 @@ impl<'de> Deserialize<'de> for Scale {
             what: "a scale: a number or [x, y, z]",
             scalar_ok: true,
         })? {
-            Read::Scalar(s) => Vec3::splat(s),
-            Read::Array(v) => Vec3::from_array(v),
+            Read::Scalar(s) => Vec3::splat(s as f32),
+            Read::Array(v) => DVec3::from_array(v).as_vec3(),
         };
         if v.cmpeq(Vec3::ZERO).any() {
             return Err(de::Error::custom("a scale of zero flattens the object"));
@@ -164,8 +208,8 @@ impl<'de> Deserialize<'de> for Color {
             what,
             scalar_ok: true,
         })? {
-            Read::Scalar(v) => Rgb::gray(v),
-            Read::Array(v) => Rgb::from(v),
+            Read::Scalar(v) => Rgb::gray(v as f32),
+            Read::Array(v) => Rgb::from(v.map(|c| c as f32)),
         };
         if rgb.r < 0.0 || rgb.g < 0.0 || rgb.b < 0.0 {
             return Err(de::Error::custom("colours must not be negative"));
@@ -194,8 +238,10 @@ impl<'de> Deserialize<'de> for Matrix {
                 "a transform's last row must be [0, 0, 0, 1] (no projection)",
             ));
         }
-        let m = glam::Mat4::from_cols_array(&rows).transpose();
-        if m.determinant() == 0.0 || !m.determinant().is_finite() {
+        let m = glam::DMat4::from_cols_array(&rows).transpose();
+        // Judged as the renderer will hold it (its linear part; the translation is rebased).
+        let det = m.as_mat4().determinant();
+        if det == 0.0 || !det.is_finite() {
             return Err(de::Error::custom(
                 "the transform is singular (it flattens the object), or so large that its determinant overflows",
             ));
@@ -222,6 +268,12 @@ impl Serialize for Vector {
     }
 }
 
+impl Serialize for Point {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.0.to_array().serialize(s)
+    }
+}
+
 impl Serialize for Scale {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         if self.0.x == self.0.y && self.0.y == self.0.z {
@@ -245,10 +297,6 @@ impl Serialize for Color {
 
 impl Serialize for Matrix {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        self.0
-            .transpose()
-            .to_cols_array()
-            .map(shortest)
-            .serialize(s)
+        self.0.transpose().to_cols_array().serialize(s)
     }
 }

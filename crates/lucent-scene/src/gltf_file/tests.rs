@@ -374,7 +374,10 @@ fn lights_are_placed_and_converted_from_photometric_units() {
     let (point, notes) = l[0].as_ref().unwrap();
     assert_eq!(point.kind, LightKind::Point);
     assert_eq!(point.intensity, Some(Color(Rgb::new(1.0, 0.5, 0.25))));
-    assert_eq!(vector(&point.position), Vec3::new(1.0, 2.0, 3.0));
+    assert_eq!(
+        point.position.as_ref().unwrap().get_ref().0,
+        glam::DVec3::new(1.0, 2.0, 3.0)
+    );
     assert_eq!(
         point.falloff.as_ref().map(|f| *f.get_ref()),
         Some(FalloffName::Quadratic)
@@ -420,9 +423,13 @@ fn a_perspective_camera_looks_down_its_nodes_minus_z() {
         * Mat4::from_scale(Vec3::splat(3.0));
     let (c, aspect) = camera_of(&camera.projection(), world).unwrap();
     assert_eq!((aspect, c.orthographic), (p.aspect_ratio(), None));
-    assert_eq!(c.eye.0, Vec3::new(0.0, 1.0, 10.0));
+    assert_eq!(c.eye.0, glam::DVec3::new(0.0, 1.0, 10.0));
     // −z turned by 90° about y is −x.
-    assert!(c.look_at.0.abs_diff_eq(Vec3::new(-1.0, 1.0, 10.0), 1e-6));
+    assert!(
+        c.look_at
+            .0
+            .abs_diff_eq(glam::DVec3::new(-1.0, 1.0, 10.0), 1e-6)
+    );
     assert!(c.up.0.abs_diff_eq(Vec3::Y, 1e-6));
     assert_eq!(c.fov.0, 0.5f32.to_degrees());
     assert_eq!(image_width(1.5), Some(900));
@@ -449,7 +456,11 @@ fn a_perspective_camera_looks_down_its_nodes_minus_z() {
         (c.orthographic.map(|h| h.0), aspect),
         (Some(4.0), Some(1.5))
     );
-    assert!(c.look_at.0.abs_diff_eq(Vec3::new(-1.0, 1.0, 10.0), 1e-6));
+    assert!(
+        c.look_at
+            .0
+            .abs_diff_eq(glam::DVec3::new(-1.0, 1.0, 10.0), 1e-6)
+    );
 }
 
 #[test]

@@ -12,7 +12,9 @@
 
 use super::Convert;
 use super::xml::Element;
-use crate::desc::{Color, FalloffName, Finite, LightDesc, LightKind, Matrix, TexelsName, Vector};
+use crate::desc::{
+    Color, FalloffName, Finite, LightDesc, LightKind, Matrix, Point, TexelsName, Vector,
+};
 use crate::error::LoadError;
 use glam::{DMat4, DVec3};
 use lucent::Rgb;
@@ -29,6 +31,15 @@ fn vector(v: DVec3, el: &Element, what: &str) -> Result<Spanned<Vector>, LoadErr
             .error(format!("the emitter's {what} is beyond single precision")));
     }
     Ok(Spanned::new(0..0, Vector(v)))
+}
+
+fn point(p: DVec3, el: &Element) -> Result<Spanned<Point>, LoadError> {
+    if !p.as_vec3().is_finite() {
+        return Err(el
+            .loc
+            .error("the emitter's position is beyond single precision"));
+    }
+    Ok(Spanned::new(0..0, Point(p)))
 }
 
 /// The light of the top-level `<emitter>` `el`.
@@ -58,14 +69,14 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<LightDesc, Load
                 (Some(pos), None) => pos,
                 (None, _) => m.transform_point3(DVec3::ZERO),
             };
-            l.position = Some(vector(position, el, "position")?);
+            l.position = Some(point(position, el)?);
             l.intensity = color(p.emitted_color_or("intensity", 1.0)?);
             l.falloff = Some(Spanned::new(0..0, FalloffName::Quadratic));
             l
         }
         "spot" => {
             let mut l = LightDesc::new(LightKind::Spot);
-            l.position = Some(vector(m.transform_point3(DVec3::ZERO), el, "position")?);
+            l.position = Some(point(m.transform_point3(DVec3::ZERO), el)?);
             let direction = m.transform_vector3(DVec3::Z);
             if direction == DVec3::ZERO {
                 return Err(el
@@ -136,10 +147,7 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<LightDesc, Load
                     "an envmap's to_world must rotate (and may scale evenly): lucent cannot shear or mirror an environment",
                 ));
             }
-            l.rotation = Some(Spanned::new(
-                0..0,
-                Matrix(glam::DMat4::from_mat3(unit).as_mat4()),
-            ));
+            l.rotation = Some(Spanned::new(0..0, Matrix(glam::DMat4::from_mat3(unit))));
             // Mitsuba's envmap puts its first and last rows of texels on the poles.
             l.texels = Some(Spanned::new(0..0, TexelsName::Poles));
             l

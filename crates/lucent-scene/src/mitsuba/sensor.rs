@@ -22,7 +22,7 @@ use super::transform;
 use super::xml::{Element, Loc};
 use crate::build::{MAX_DEPTH, MAX_IMAGE_SIDE, MAX_PIXELS, MAX_SAMPLES};
 use crate::desc::settings::FilterName;
-use crate::desc::{CameraDesc, Finite, IntegratorName, SceneDesc, Vector};
+use crate::desc::{CameraDesc, Finite, IntegratorName, Point, SceneDesc, Vector};
 use crate::error::LoadError;
 use glam::{DMat4, DVec3};
 use toml::Spanned;
@@ -258,11 +258,12 @@ pub fn read<'a>(
             Err(at.error("the camera is beyond single precision"))
         }
     };
+    let point = |p: DVec3| v(p).map(|_| Point(p));
     desc.camera = Spanned::new(
         0..0,
         CameraDesc {
-            eye: v(eye)?,
-            look_at: v(look_at)?,
+            eye: point(eye)?,
+            look_at: point(look_at)?,
             up: v(up)?,
             fov: Finite(match projection {
                 Projection::Perspective(fov) => fov as f32,

@@ -18,7 +18,7 @@ use super::bsdf;
 use super::transform::{self, placement};
 use super::xml::Element;
 use crate::build::RADIUS_RANGE;
-use crate::desc::{Finite, ObjectDesc, ObjectKind, Vector};
+use crate::desc::{Finite, ObjectDesc, ObjectKind, Point, Vector};
 use crate::error::LoadError;
 use glam::{DMat4, DVec3};
 use toml::Spanned;
@@ -101,7 +101,8 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
                     "a sphere's to_world must be a similarity (rotation, uniform scale, translation): this one makes an ellipsoid, which lucent does not read",
                 ));
             };
-            let c = m.transform_point3(DVec3::ZERO).as_vec3();
+            let center = m.transform_point3(DVec3::ZERO);
+            let c = center.as_vec3();
             let r = scale as f32;
             if !c.is_finite() || !r.is_finite() {
                 return Err(el.loc.error("the sphere is beyond single precision"));
@@ -112,7 +113,7 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
                     "the sphere's radius {r:e} (after to_world) is outside lucent's range, {lo:e} to {hi:e}"
                 )));
             }
-            o.center = Some(Spanned::new(0..0, Vector(c)));
+            o.center = Some(Spanned::new(0..0, Point(center)));
             o.radius = Some(Spanned::new(0..0, Finite(r)));
             // Mitsuba's texture coordinates (and tangents): u from the object's +x about its
             // +z, whatever the rotation.

@@ -210,7 +210,7 @@ pub fn placement(m: &DMat4, loc: &Loc) -> Result<Matrix, LoadError> {
             "the transform's scales are too small, too large or too unequal for single precision (its determinant is {det:e})"
         )));
     }
-    Ok(Matrix(single))
+    Ok(Matrix(*m))
 }
 
 #[cfg(test)]

@@ -107,8 +107,11 @@ fn a_lookat_places_and_rolls_the_camera() {
     let imported = import(&path);
     let cam = imported.desc.camera.get_ref();
     assert!(imported.camera_given);
-    assert!(near(cam.eye.0, Vec3::new(1.0, 2.0, 3.0)));
-    assert!(near((cam.look_at.0 - cam.eye.0).normalize(), -Vec3::Z));
+    assert!(near(cam.eye.0.as_vec3(), Vec3::new(1.0, 2.0, 3.0)));
+    assert!(near(
+        (cam.look_at.0 - cam.eye.0).normalize().as_vec3(),
+        -Vec3::Z
+    ));
     // up' = dir × (up × dir): the given up made perpendicular to the view.
     let s = std::f32::consts::FRAC_1_SQRT_2;
     assert!(

@@ -53,7 +53,7 @@ fn shapes_map_onto_objects() {
     assert!(o[1].transform.is_none());
     // to_world · translate(center) · scale(radius): centre 2·(1, 2, 3) + (1, 0, 0), radius 1.
     assert_eq!(
-        o[2].center.as_ref().unwrap().get_ref().0,
+        o[2].center.as_ref().unwrap().get_ref().0.as_vec3(),
         Vec3::new(3.0, 4.0, 6.0)
     );
     assert_eq!(o[2].radius.as_ref().unwrap().get_ref().0, 1.0);
@@ -298,7 +298,7 @@ fn emitters_map_onto_lights() {
     );
     let path = dir.write("emitters.xml", &text);
     let imported = import(&path);
-    let v = |l: &LightDesc| l.position.as_ref().unwrap().get_ref().0;
+    let v = |l: &LightDesc| l.position.as_ref().unwrap().get_ref().0.as_vec3();
     let d = |l: &LightDesc| l.direction.as_ref().unwrap().get_ref().0;
     let point = light(&imported, LightKind::Point);
     assert_eq!(v(point), Vec3::new(1.0, 4.0, 2.0));
@@ -343,7 +343,13 @@ fn emitters_map_onto_lights() {
     assert_eq!(sky.file.as_ref().unwrap().get_ref(), "sky.exr");
     assert_eq!(sky.intensity.unwrap().0, Rgb::gray(2.0));
     // Mitsuba's image centre faces +z, lucent's −z: without a to_world, a half turn about +y.
-    let r = sky.rotation.as_ref().expect("a rotation").get_ref().0;
+    let r = sky
+        .rotation
+        .as_ref()
+        .expect("a rotation")
+        .get_ref()
+        .0
+        .as_mat4();
     assert!(
         r.x_axis
             .abs_diff_eq(glam::Vec4::new(-1.0, 0.0, 0.0, 0.0), 1e-6),

@@ -27,7 +27,7 @@ fn defaults_fill_in_names_and_an_undefined_name_is_refused_at_its_value() {
     // stand inside a value.
     assert_eq!(o.radius.as_ref().unwrap().get_ref().0, 0.25);
     assert_eq!(
-        o.center.as_ref().unwrap().get_ref().0,
+        o.center.as_ref().unwrap().get_ref().0.as_vec3(),
         Vec3::new(4.0, -0.25, 14.0)
     );
     assert_eq!(

@@ -314,7 +314,12 @@ pub fn material<'a>(imported: &'a lucent_scene::Imported, name: &str) -> &'a Mat
 
 /// The object's placement.
 pub fn transform(o: &ObjectDesc) -> Mat4 {
-    o.transform.as_ref().expect("a transform").get_ref().0
+    o.transform
+        .as_ref()
+        .expect("a transform")
+        .get_ref()
+        .0
+        .as_mat4()
 }
 
 /// Whether two points or vectors agree to 1e-5.

@@ -116,6 +116,7 @@ pub struct SceneBuilder {
     objects: u32,
     accelerator: AccelKind,
     triangle_test: TriangleTest,
+    origin: glam::DVec3,
 }
 
 impl SceneBuilder {
@@ -141,7 +142,16 @@ impl SceneBuilder {
             objects: 0,
             accelerator: AccelKind::default(),
             triangle_test: TriangleTest::default(),
+            origin: glam::DVec3::ZERO,
         }
+    }
+
+    /// Where this scene's coordinates have their zero in the world the scene was described in
+    /// (default the world's origin): a scene far out is built relative to a point near its
+    /// camera, and solid textures, which are defined in the world, add it back.
+    pub fn origin(&mut self, origin: glam::DVec3) -> &mut Self {
+        self.origin = origin;
+        self
     }
 
     /// The colour of rays that hit nothing.
@@ -606,6 +616,7 @@ impl SceneBuilder {
             animation,
             bounds,
             triangle_test: self.triangle_test,
+            origin: self.origin,
             build_time,
             emitters: Arc::new(emitters),
         };

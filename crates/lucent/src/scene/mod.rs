@@ -194,6 +194,8 @@ pub struct Scene {
     animation: Option<Arc<Animation>>,
     bounds: Aabb,
     triangle_test: TriangleTest,
+    /// See [`SceneBuilder::origin`].
+    origin: glam::DVec3,
     build_time: Duration,
     /// The lights as the path tracer samples them (area lights and the environment too),
     /// shared between clones.
@@ -355,6 +357,22 @@ impl Scene {
     /// The bounding box of every bounded shape (infinite planes are left out).
     pub fn bounds(&self) -> Aabb {
         self.bounds
+    }
+
+    /// Where this scene's coordinates have their zero in the world it was described in (see
+    /// [`SceneBuilder::origin`]).
+    pub fn origin(&self) -> glam::DVec3 {
+        self.origin
+    }
+
+    /// The world position of the scene's point `p` (solid textures are defined there).
+    #[inline]
+    pub(crate) fn in_world(&self, p: glam::Vec3) -> glam::Vec3 {
+        if self.origin == glam::DVec3::ZERO {
+            p
+        } else {
+            (p.as_dvec3() + self.origin).as_vec3()
+        }
     }
 
     /// The accelerator in use.
