@@ -13,6 +13,7 @@ pub mod error;
 pub mod framing;
 pub mod gltf_file;
 pub mod hash;
+pub mod ies;
 pub mod images;
 pub mod import;
 pub mod input;

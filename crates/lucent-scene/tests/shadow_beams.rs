@@ -20,15 +20,7 @@ fn every_example_meets_the_same_blockers_through_shadow_beams() {
         file.desc.image.width = Spanned::new(0..0, 64);
         file.desc.image.height = Spanned::new(0..0, 48);
         let scene = file.build().unwrap().scene;
-        let lights: Vec<_> = scene
-            .lights
-            .iter()
-            .filter_map(|l| match l {
-                Light::Point(p) => Some(p.position),
-                Light::Spot(s) => Some(s.point.position),
-                Light::Directional(_) => None,
-            })
-            .collect();
+        let lights: Vec<_> = scene.lights.iter().filter_map(Light::position).collect();
         let mut stats = TraversalStats::default();
         for ty in 0..48 / TILE {
             for tx in 0..64 / TILE {

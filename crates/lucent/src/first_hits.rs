@@ -8,7 +8,6 @@
 //! of them is traced, and those are the camera hits of the whole tile.
 
 use crate::integrator::RayStats;
-use crate::light::Light;
 use crate::scene::{Beam, Scene};
 use crate::shape::SurfaceHit;
 use lucent_accel::wide_bvh::PACKET;
@@ -44,10 +43,10 @@ pub(crate) fn first_hits(
         scene
             .lights
             .iter()
-            .map(|light| match light {
-                Light::Point(p) => scene.shadow_beam(p.position, &origins),
-                Light::Spot(s) => scene.shadow_beam(s.point.position, &origins),
-                Light::Directional(_) => None,
+            .map(|light| {
+                light
+                    .position()
+                    .and_then(|p| scene.shadow_beam(p, &origins))
             })
             .collect()
     } else {

@@ -31,15 +31,7 @@ struct Group {
 /// default directional light) gets stand-ins: for each directional light, a point up its
 /// beam, one diagonal of the scene's box from its centre.
 fn light_points(scene: &Scene) -> Vec<glam::Vec3> {
-    let points: Vec<glam::Vec3> = scene
-        .lights
-        .iter()
-        .filter_map(|l| match l {
-            Light::Point(p) => Some(p.position),
-            Light::Spot(s) => Some(s.point.position),
-            Light::Directional(_) => None,
-        })
-        .collect();
+    let points: Vec<glam::Vec3> = scene.lights.iter().filter_map(Light::position).collect();
     if !points.is_empty() {
         return points;
     }

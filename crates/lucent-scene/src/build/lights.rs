@@ -43,6 +43,7 @@ pub fn add_lights(
             ("cutoff_start", span(&d.cutoff_start)),
             ("file", span(&d.file)),
             ("rotation", span(&d.rotation)),
+            ("front", span(&d.front)),
             ("texels", span(&d.texels)),
         ];
         let takes: &[&str] = match d.kind {
@@ -50,6 +51,7 @@ pub fn add_lights(
             LightKind::Spot => &["position", "falloff", "direction", "cutoff", "cutoff_start"],
             LightKind::Directional => &["direction"],
             LightKind::Environment => &["file", "rotation", "texels"],
+            LightKind::Photometric => &["file", "position", "falloff", "direction", "front"],
         };
         let others: Vec<_> = keys
             .into_iter()
@@ -92,6 +94,7 @@ pub fn add_lights(
         }
         let light = match d.kind {
             LightKind::Point => Light::Point(point(ctx)?),
+            LightKind::Photometric => super::photometric::light(ctx, l, intensity, sppm)?,
             LightKind::Directional => Light::Directional(DirectionalLight {
                 direction: direction(ctx)?,
                 intensity,

@@ -6,6 +6,7 @@ mod lights;
 pub mod materials;
 mod motion;
 mod objects;
+mod photometric;
 pub mod shapes;
 pub mod textures;
 

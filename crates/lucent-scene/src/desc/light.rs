@@ -18,6 +18,9 @@ pub enum LightKind {
     /// `intensity`, `file`: light from every direction at infinity, constant or a lat-long
     /// image.
     Environment,
+    /// `file` (an IES photometric file), `position`, `direction`, `front`, `intensity`,
+    /// `falloff`: a point light as strong in each direction as the file's candela table says.
+    Photometric,
 }
 
 impl LightKind {
@@ -28,6 +31,7 @@ impl LightKind {
             LightKind::Spot => "spot light",
             LightKind::Directional => "directional light",
             LightKind::Environment => "environment light",
+            LightKind::Photometric => "photometric light",
         }
     }
 }
@@ -70,7 +74,8 @@ pub struct LightDesc {
     /// Point, spot: `"none"` (default) or `"quadratic"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub falloff: Option<Spanned<FalloffName>>,
-    /// Directional, spot: the direction the light travels in (non-zero).
+    /// Directional, spot: the direction the light travels in (non-zero). Photometric: where
+    /// the luminaire's nadir points (default `[0, −1, 0]`, straight down).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<Spanned<Vector>>,
     /// Spot: the cone's half-angle in degrees, in (0, 90].
@@ -81,13 +86,17 @@ pub struct LightDesc {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cutoff_start: Option<Spanned<Finite>>,
     /// Environment: a lat-long (equirectangular) image, relative to the scene file's folder;
-    /// +y is up, the image's centre column looks along −z.
+    /// +y is up, the image's centre column looks along −z. Photometric: an IES file.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<Spanned<String>>,
     /// Environment: its orientation, a rotation (as a 4×4 matrix, row by row, whose
     /// translation is ignored): the image's +y and −z are turned to where it takes them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation: Option<Spanned<Matrix>>,
+    /// Photometric: where the luminaire's length points (its `C = 0°` half-plane; default
+    /// `[1, 0, 0]`, or `[0, 0, −1]` for a nadir along x), made perpendicular to `direction`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub front: Option<Spanned<Vector>>,
     /// Environment: where the image's texels lie (default `"cells"`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub texels: Option<Spanned<TexelsName>>,
@@ -106,6 +115,7 @@ impl LightDesc {
             cutoff_start: None,
             file: None,
             rotation: None,
+            front: None,
             texels: None,
         }
     }

@@ -53,6 +53,7 @@ use super::area::{AreaLights, EmitterShape};
 use super::directional::DirectionalLight;
 use super::emitters::{Emitters, Entry};
 use super::environment::EnvironmentLight;
+use super::photometric::PhotometricLight;
 use super::point::PointLight;
 use super::spot::SpotLight;
 use crate::Rgb;
@@ -125,6 +126,7 @@ impl Emitters {
                 Light::Point(l) => point_photon(l, u_dir),
                 Light::Spot(l) => spot_photon(l, u_dir),
                 Light::Directional(l) => directional_photon(l, bounds, u_pos),
+                Light::Photometric(l) => photometric_photon(l, u_dir),
             },
             Entry::Area(j) => area_photon(&self.area, j as usize, u_rest, u_pos, u_dir),
             Entry::Environment => environment_photon(
@@ -158,6 +160,7 @@ impl Emitters {
                 Light::Point(p) => p.intensity * (4.0 * PI),
                 Light::Spot(s) => s.point.intensity * (2.0 * PI * spot_cone_integral(s)),
                 Light::Directional(d) => d.intensity * (PI * r2),
+                Light::Photometric(l) => l.point.intensity * l.profile.total(),
             };
         }
         for l in &self.area.lights {
@@ -176,6 +179,23 @@ fn point_photon(l: &PointLight, u_dir: Vec2) -> Option<Photon> {
         origin: l.position,
         dir: square_to_uniform_sphere(u_dir),
         power: l.intensity * (4.0 * PI),
+        from_object: None,
+    })
+}
+
+/// A photon of a photometric light: a direction drawn in proportion to its profile's
+/// tabulated intensity, carrying `I(ω) / p(ω)`.
+fn photometric_photon(l: &PhotometricLight, u_dir: Vec2) -> Option<Photon> {
+    let (local, pdf) = l.profile.sample(u_dir)?;
+    let intensity = l.profile.intensity(local);
+    if pdf <= 0.0 || intensity <= 0.0 {
+        return None;
+    }
+    Some(Photon {
+        origin: l.point.position,
+        // The frame's inverse is its transpose (a rotation).
+        dir: (l.to_luminaire.transpose() * local).normalize(),
+        power: l.point.intensity * (intensity / pdf),
         from_object: None,
     })
 }
@@ -874,7 +894,7 @@ mod tests {
             Light::Spot(aimless),
             Light::Directional(still),
         ] {
-            let delta = [l];
+            let delta = [l.clone()];
             let e = emitters(&delta, AreaLights::default(), None);
             for &u in &us {
                 assert!(draw(&e, &delta, bounds(), u).is_none(), "{l:?}");
@@ -887,7 +907,7 @@ mod tests {
         let delta = [
             Light::Point(point(Falloff::None)),
             Light::Spot(spot(-1.0, 0.5)),
-            dir[0],
+            dir[0].clone(),
         ];
         let image = sky_image();
         let e = emitters(&delta, area, EnvironmentLight::image(&image));

@@ -12,6 +12,7 @@ pub mod directional;
 pub mod emission;
 pub mod emitters;
 pub mod environment;
+pub mod photometric;
 pub mod point;
 pub mod spot;
 
@@ -21,6 +22,7 @@ pub use emitters::Emitters;
 pub use environment::EnvironmentLight;
 
 pub use directional::DirectionalLight;
+pub use photometric::{Goniometry, PhotometricLight, Profile, ProfileError};
 pub use point::{Falloff, PointLight};
 pub use spot::SpotLight;
 
@@ -28,7 +30,7 @@ use crate::Rgb;
 use glam::Vec3;
 
 /// A light source.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Light {
     /// Light from one point.
     Point(PointLight),
@@ -36,6 +38,8 @@ pub enum Light {
     Spot(SpotLight),
     /// Parallel light from infinitely far away.
     Directional(DirectionalLight),
+    /// Light from one point, as strong in each direction as a measured table says.
+    Photometric(PhotometricLight),
 }
 
 /// A light as seen from a shaded point.
@@ -50,6 +54,16 @@ pub struct LightSample {
 }
 
 impl Light {
+    /// Where a light at a point is; `None` for a light at infinity.
+    pub fn position(&self) -> Option<Vec3> {
+        match self {
+            Light::Point(p) => Some(p.position),
+            Light::Spot(s) => Some(s.point.position),
+            Light::Photometric(l) => Some(l.point.position),
+            Light::Directional(_) => None,
+        }
+    }
+
     /// The light as seen from `p`, or `None` when `p` is exactly at a point light.
     #[inline]
     pub fn illuminate(&self, p: Vec3) -> Option<LightSample> {
@@ -57,6 +71,7 @@ impl Light {
             Light::Point(l) => l.illuminate(p),
             Light::Spot(l) => l.illuminate(p),
             Light::Directional(l) => Some(l.illuminate()),
+            Light::Photometric(l) => l.illuminate(p),
         }
     }
 }
