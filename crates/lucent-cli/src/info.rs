@@ -44,6 +44,27 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         // integrators see the environment only where rays miss).
         println!("lights:      {} (and {})", c.lights, extra.join(" and "));
     }
+    let photometric: Vec<_> = scene
+        .lights
+        .iter()
+        .filter_map(|l| match l {
+            lucent::light::Light::Photometric(p) => Some(p),
+            _ => None,
+        })
+        .collect();
+    if !photometric.is_empty() {
+        // The profiles' own flux (their tables are in candela), before `intensity` scales it.
+        let lumens: f32 = photometric.iter().map(|p| p.profile.total()).sum();
+        let kinds: Vec<_> = photometric
+            .iter()
+            .map(|p| p.profile.goniometry().name())
+            .collect();
+        println!(
+            "photometric: {} ({}), {lumens:.0} lm from their tables",
+            photometric.len(),
+            kinds.join(", ")
+        );
+    }
     println!("materials:   {}", c.materials);
     if scene.is_animated() {
         let n = scene.moving_objects();

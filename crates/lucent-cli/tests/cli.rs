@@ -120,6 +120,29 @@ fn info_counts_the_default_scene() {
 }
 
 #[test]
+fn info_states_a_photometric_lights_flux() {
+    let scene = workspace().join("examples/street-lamp.toml");
+    let output = lucent().arg("info").arg(&scene).output().unwrap();
+    assert_success(&output);
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("photometric: 1 (type C), "))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    // The table integrated independently (bilinear, a 0.25° grid, outside lucent): 6,382 lm.
+    let lumens: f32 = line
+        .split(", ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((lumens - 6382.0).abs() < 64.0, "{line}");
+}
+
+#[test]
 fn info_counts_the_bunny_triangles() {
     let bunny = workspace().join("examples/bunny.toml");
     if !workspace()
