@@ -237,6 +237,36 @@ fn mutated_mtl_files() {
 }
 
 #[test]
+fn mutated_ies_files() {
+    let street = include_bytes!("../../../examples/lamps/street.ies");
+    let tilted = b"IESNA:LM-63-2002\n[TEST] t\nTILT=INCLUDE\n1\n3\n0 30 90\n1 0.8 0.4\n\
+        1 -1 1 3 2 2 2 0 0 0\n1 1 10\n-60 0 60\n0 90\n1 2 3 4 5 6\n";
+    fuzz(Format {
+        name: "ies",
+        samples: vec![street.to_vec(), tilted.to_vec()],
+        read: |bytes, _| {
+            let text = String::from_utf8_lossy(bytes);
+            match lucent_scene::ies::parse_ies(Path::new("fuzz.ies"), &text) {
+                Ok(ies) => {
+                    // Every direction gives a finite, non-negative intensity.
+                    for d in [
+                        glam::Vec3::NEG_Z,
+                        glam::Vec3::X,
+                        glam::Vec3::new(0.3, -0.5, 0.8),
+                    ] {
+                        let i = ies.profile.intensity(d.normalize());
+                        assert!(i.is_finite() && i >= 0.0, "{i}");
+                    }
+                    assert!(ies.profile.total().is_finite());
+                    true
+                }
+                Err(_) => false,
+            }
+        },
+    });
+}
+
+#[test]
 fn mutated_ply_files() {
     let mut samples: Vec<Vec<u8>> = vec![
         PLY_QUAD.into(),
