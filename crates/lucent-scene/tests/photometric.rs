@@ -89,6 +89,9 @@ fn pole_free(gamma: f32) -> f32 {
     gamma * (180.0 - gamma) / 8100.0
 }
 
+/// The direction of a table's (vertical, horizontal) angles in the luminaire's frame.
+type Angles = fn(f32, f32) -> Vec3;
+
 fn rad(deg: f32) -> f32 {
     deg.to_radians()
 }
@@ -145,39 +148,25 @@ fn type_b_and_type_a_tables_are_sent_along_their_directions() {
         let (v, h) = (rad(v), rad(h));
         Vec3::new(h.cos() * v.sin(), h.sin(), -h.cos() * v.cos())
     };
-    let light = light_of(
-        "b",
-        &ies_text(2, "NONE", &vertical, &horizontal, &values),
-        "position = [0, 2, 0]",
-    );
-    check_table(
-        &light,
-        Vec3::Y * 2.0,
-        &vertical,
-        &horizontal,
-        &values,
-        type_b,
-        hanging,
-    );
     // Type A: d = (cos V cos H, −cos V sin H, sin V).
     let type_a = |v: f32, h: f32| {
         let (v, h) = (rad(v), rad(h));
         Vec3::new(v.cos() * h.cos(), -v.cos() * h.sin(), v.sin())
     };
-    let light = light_of(
-        "a",
-        &ies_text(3, "NONE", &vertical, &horizontal, &values),
-        "position = [0, 2, 0]",
-    );
-    check_table(
-        &light,
-        Vec3::Y * 2.0,
-        &vertical,
-        &horizontal,
-        &values,
-        type_a,
-        hanging,
-    );
+    let types: [(u32, &str, Angles); 2] = [(2, "b", type_b), (3, "a", type_a)];
+    for (kind, name, dir) in types {
+        let ies = ies_text(kind, "NONE", &vertical, &horizontal, &values);
+        let light = light_of(name, &ies, "position = [0, 2, 0]");
+        check_table(
+            &light,
+            Vec3::Y * 2.0,
+            &vertical,
+            &horizontal,
+            &values,
+            dir,
+            hanging,
+        );
+    }
     // A type B table measured on one side (H from 0°) is mirrored to the other.
     let one_side = [0.0, 30.0, 60.0];
     let values: Vec<f32> = one_side
