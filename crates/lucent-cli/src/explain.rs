@@ -79,7 +79,7 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
             x as f32 + dx,
             y as f32 + dy
         )?;
-        print_node(&mut out, &root, 1, scene.origin())?;
+        print_node(&mut out, &root, 1, scene)?;
         writeln!(out, "  radiance {}", rgb(radiance))?;
         if radiance.is_finite() {
             value += radiance;
@@ -125,9 +125,10 @@ fn v3(v: glam::Vec3) -> String {
     format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z)
 }
 
-/// The scene's point `p` where the file has it: the scene is built relative to `origin`.
-fn at(p: glam::Vec3, origin: glam::DVec3) -> String {
-    let p = p.as_dvec3() + origin;
+/// The scene's point `p` where the file has it (the scene is built relative to a point near
+/// its camera).
+fn at(p: glam::Vec3, scene: &lucent::scene::Scene) -> String {
+    let p = scene.world_point(p);
     format!("({:.3}, {:.3}, {:.3})", p.x, p.y, p.z)
 }
 
@@ -143,14 +144,14 @@ fn print_node(
     out: &mut String,
     node: &RayNode,
     indent: usize,
-    origin: glam::DVec3,
+    scene: &lucent::scene::Scene,
 ) -> std::fmt::Result {
     let pad = "  ".repeat(indent);
     writeln!(
         out,
         "{pad}{} ray from {} along {}, weight {}",
         kind_name(node.kind),
-        at(node.origin, origin),
+        at(node.origin, scene),
         v3(node.dir),
         rgb(node.weight)
     )?;
@@ -164,7 +165,7 @@ fn print_node(
                 hit.material,
                 hit.t,
                 if hit.entering { "entering" } else { "leaving" },
-                at(hit.point, origin)
+                at(hit.point, scene)
             )?;
             for l in &node.lights {
                 if l.shadow.is_black() {
@@ -206,7 +207,7 @@ fn print_node(
         writeln!(out, "{pad}  {text}")?;
     }
     for c in &node.children {
-        print_node(out, c, indent + 1, origin)?;
+        print_node(out, c, indent + 1, scene)?;
     }
     Ok(())
 }

@@ -92,9 +92,8 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         println!("bounds:      empty{infinite}");
     } else {
         // In the file's world (the scene is built relative to a point near its camera).
-        let o = scene.origin();
         let v = |p: glam::Vec3| {
-            let p = p.as_dvec3() + o;
+            let p = scene.world_point(p);
             format!("[{:.4}, {:.4}, {:.4}]", p.x, p.y, p.z)
         };
         println!("bounds:      {} to {}{infinite}", v(b.min), v(b.max));

@@ -9,9 +9,6 @@ use lucent::light::{Falloff, Light, PhotometricLight, PointLight};
 use std::sync::Arc;
 use toml::Spanned;
 
-/// Candela per unit of lucent's intensity (W/sr): 683 lm/W, as the glTF reader converts.
-const CANDELA_PER_WATT: f32 = 683.0;
-
 /// The photometric light of table `l`, its colour `intensity` multiplying the file's candela
 /// (over 683). Its falloff is quadratic unless the table says `"none"` (and is quadratic under
 /// `sppm` whatever it says).
@@ -71,7 +68,8 @@ pub fn light(
     Ok(Light::Photometric(PhotometricLight {
         point: PointLight {
             position,
-            intensity: intensity * (tilt / CANDELA_PER_WATT),
+            // Candela per unit of lucent's intensity (W/sr), as the glTF reader converts.
+            intensity: intensity * (tilt / crate::gltf_file::LUMENS_PER_WATT),
             falloff,
         },
         to_luminaire: to_world.transpose(),

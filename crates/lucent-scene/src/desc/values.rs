@@ -144,15 +144,20 @@ impl<'de> Deserialize<'de> for Finite {
     }
 }
 
+/// Three finite numbers `[x, y, z]`, in double precision (for [`Vector`] and [`Point`]).
+fn three<'de, D: Deserializer<'de>>(d: D) -> Result<DVec3, D::Error> {
+    match d.deserialize_any(Numbers::<3> {
+        what: "a vector [x, y, z] of finite numbers",
+        scalar_ok: false,
+    })? {
+        Read::Array(v) => Ok(DVec3::from_array(v)),
+        Read::Scalar(_) => unreachable!("the visitor refuses scalars"),
+    }
+}
+
 impl<'de> Deserialize<'de> for Vector {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        match d.deserialize_any(Numbers::<3> {
-            what: "a vector [x, y, z] of finite numbers",
-            scalar_ok: false,
-        })? {
-            Read::Array(v) => Ok(Vector(DVec3::from_array(v).as_vec3())),
-            Read::Scalar(_) => unreachable!("the visitor refuses scalars"),
-        }
+        three(d).map(|v| Vector(v.as_vec3()))
     }
 }
 
@@ -175,13 +180,7 @@ impl Matrix {
 
 impl<'de> Deserialize<'de> for Point {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        match d.deserialize_any(Numbers::<3> {
-            what: "a vector [x, y, z] of finite numbers",
-            scalar_ok: false,
-        })? {
-            Read::Array(v) => Ok(Point(DVec3::from_array(v))),
-            Read::Scalar(_) => unreachable!("the visitor refuses scalars"),
-        }
+        three(d).map(Point)
     }
 }
 

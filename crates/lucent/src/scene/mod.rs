@@ -365,13 +365,18 @@ impl Scene {
         self.origin
     }
 
-    /// The world position of the scene's point `p` (solid textures are defined there).
+    /// Where the scene's point `p` is in the world it was described in.
+    pub fn world_point(&self, p: glam::Vec3) -> glam::DVec3 {
+        p.as_dvec3() + self.origin
+    }
+
+    /// [`Scene::world_point`] in single precision (solid textures are defined there).
     #[inline]
     pub(crate) fn in_world(&self, p: glam::Vec3) -> glam::Vec3 {
         if self.origin == glam::DVec3::ZERO {
             p
         } else {
-            (p.as_dvec3() + self.origin).as_vec3()
+            self.world_point(p).as_vec3()
         }
     }
 
