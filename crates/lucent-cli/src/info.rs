@@ -77,9 +77,24 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         } else {
             "the camera stands still"
         };
-        let t = job.overrides.time.unwrap_or(0.0);
+        match scene.shutter() {
+            Some(s) => println!(
+                "motion:      {objects}, {camera} (blurred over the shutter, t = {} to {} s; `--time` picks one instant)",
+                s.open(),
+                s.close()
+            ),
+            None => {
+                let t = job.overrides.time.unwrap_or(0.0);
+                println!(
+                    "motion:      {objects}, {camera} (shown at t = {t} s; `--time` picks another instant)"
+                );
+            }
+        }
+    } else if let Some(s) = scene.shutter() {
         println!(
-            "motion:      {objects}, {camera} (shown at t = {t} s; `--time` picks another instant)"
+            "shutter:     open from t = {} to {} s (nothing moves: no blur)",
+            s.open(),
+            s.close()
         );
     }
     let b = scene.bounds();

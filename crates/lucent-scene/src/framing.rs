@@ -244,6 +244,7 @@ impl Framing {
             focus_distance: None,
             orthographic: None,
             motion: None,
+            shutter: None,
         }
     }
 

@@ -1058,6 +1058,7 @@ fn camera_of(
         focus_distance: None,
         orthographic,
         motion: None,
+        shutter: None,
     };
     Ok((camera, aspect))
 }

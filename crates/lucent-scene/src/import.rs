@@ -40,6 +40,7 @@ pub fn placeholder_camera() -> Spanned<CameraDesc> {
             focus_distance: None,
             orthographic: None,
             motion: None,
+            shutter: None,
         },
     )
 }

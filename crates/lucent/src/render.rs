@@ -18,7 +18,6 @@ use crate::film::filter::{Filter, FilterSampler};
 use crate::film::splat::{Commits, FilterSampling, TileSplats};
 use crate::integrator::{Integrator, RayStats};
 use crate::sampling::sobol::Sampler;
-use crate::sampling::{pixel_offset, uniform};
 use crate::scene::{Beam, Scene};
 use crate::schedule::adaptive::{Adaptive, Band, BandCorners, corner_beam};
 use crate::schedule::{Tile, tiles};
@@ -28,6 +27,9 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 use thiserror::Error;
+
+mod camera_sample;
+use camera_sample::{at_instant, camera_ray, draw};
 
 /// Samples per pixel in one pass over the tiles (see [`render`]).
 pub const PASS_SAMPLES: u32 = 64;
@@ -381,6 +383,7 @@ pub fn render(
                     adaptive: a,
                     band: &band,
                     beam: None,
+                    instants: None,
                 };
                 let beams = beams_apply(settings);
                 work[start..end].par_iter().for_each(|tile| {
@@ -489,7 +492,8 @@ fn render_tile_adaptive(
     cancel: &AtomicBool,
 ) -> (RayStats, u64) {
     // The tile's corner rays through one beam (the same values as from the roots).
-    let beam = beams
+    let instants = corners.scene.instants().map(Mutex::new);
+    let beam = (beams && instants.is_none())
         .then(|| {
             let block = corners.adaptive.block;
             corner_beam(corners.scene, (tile.x0, tile.y0), (tile.x1, tile.y1), block)
@@ -497,6 +501,7 @@ fn render_tile_adaptive(
         .flatten();
     let corners = &BandCorners {
         beam: beam.as_ref(),
+        instants: instants.as_ref(),
         ..*corners
     };
     let mut stats = RayStats::default();
@@ -565,6 +570,7 @@ fn render_tile(
             cancel,
         );
     }
+    let mut instants = scene.instants();
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -577,8 +583,9 @@ fn render_tile(
                     return (stats, taken);
                 }
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
-                let (ray, weight) =
-                    camera_sample(scene, settings, filter, (x, y), pixel, s, &mut sampler);
+                let d = draw(scene, settings, pixel, s, &mut sampler);
+                let scene = at_instant(scene, &mut instants, d.time);
+                let (ray, weight) = camera_ray(scene, settings, filter, (x, y), &d);
                 stats.camera += 1;
                 let value = settings.integrator.radiance_in(
                     scene,
@@ -632,8 +639,8 @@ fn render_tile_first_hits(
             let (px, py) = (x - tile.x0, y - tile.y0);
             for s in part.samples(px, py)..upto {
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
-                let (ray, weight) =
-                    camera_sample(scene, settings, tb.filter, (x, y), pixel, s, &mut sampler);
+                let d = draw(scene, settings, pixel, s, &mut sampler);
+                let (ray, weight) = camera_ray(scene, settings, tb.filter, (x, y), &d);
                 let first = s == part.samples(px, py);
                 todo.push(((px, py), first, ray, weight));
             }
@@ -680,6 +687,7 @@ fn render_tile_splats(
     let mut splats = TileSplats::new(tile.x0, tile.y0, w, h, &settings.filter);
     let width = u64::from(scene.camera.width());
     let beam = tile_beam(scene, settings, tile);
+    let mut instants = scene.instants();
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -694,9 +702,10 @@ fn render_tile_splats(
                 }
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
                 // Uniform in the pixel: the filter weighs the sample where it lands.
-                let (u, lens) = pixel_and_lens(scene, settings, pixel, s, &mut sampler);
-                let (sx, sy) = (x as f32 + u.x, y as f32 + u.y);
-                let ray = scene.camera.ray_through_lens(sx, sy, lens);
+                let d = draw(scene, settings, pixel, s, &mut sampler);
+                let scene = at_instant(scene, &mut instants, d.time);
+                let (sx, sy) = (x as f32 + d.in_pixel.x, y as f32 + d.in_pixel.y);
+                let ray = scene.camera.ray_through_lens(sx, sy, d.lens);
                 stats.camera += 1;
                 let value = settings.integrator.radiance_in(
                     scene,
@@ -721,14 +730,15 @@ fn beams_apply(settings: &RenderSettings) -> bool {
     settings.beam && !matches!(settings.integrator, Integrator::Debug(_))
 }
 
-/// The beam of `tile`'s camera rays, when beams apply ([`beams_apply`]) and the camera is a
-/// pinhole.
+/// The beam of `tile`'s camera rays, when beams apply ([`beams_apply`]), the camera is a
+/// pinhole and the scene is seen at one instant.
 ///
 /// A sample lands in `[x, x + 1)` of its pixel, or within the filter's radius of the pixel's
 /// centre when the filter is importance sampled: the tile widened by the radius (at least half
 /// a pixel) holds every camera ray of the tile.
 fn tile_beam(scene: &Scene, settings: &RenderSettings, tile: &Tile) -> Option<Beam> {
-    if !beams_apply(settings) {
+    // A beam holds the rays of one instant; a shutter's samples each see their own.
+    if !beams_apply(settings) || scene.blurs() {
         return None;
     }
     let m = settings.filter.radius().max(0.5);
@@ -736,57 +746,4 @@ fn tile_beam(scene: &Scene, settings: &RenderSettings, tile: &Tile) -> Option<Be
     let (x1, y1) = (tile.x1 as f32 + m, tile.y1 as f32 + m);
     let frustum = scene.camera.frustum((x0, y0), (x1, y1))?;
     Some(scene.beam(&frustum))
-}
-
-/// Where in its pixel sample `s` of pixel `pixel` lands (uniform in `[0, 1)²`) and which point
-/// of the lens it passes: from the low-discrepancy sampler for the path tracer, and for the
-/// deterministic integrators the stratified jitter of [`pixel_offset`] (exactly as before filters
-/// and lenses existed) with the lens position from the hash.
-fn pixel_and_lens(
-    scene: &Scene,
-    settings: &RenderSettings,
-    pixel: u64,
-    s: u32,
-    sampler: &mut Sampler,
-) -> (glam::Vec2, glam::Vec2) {
-    if let Integrator::Path(_) = settings.integrator {
-        let in_pixel = sampler.next_2d();
-        // A camera without a lens has no use for a lens position: its dimensions are spent,
-        // not drawn.
-        let mut lens = sampler.defer(2);
-        if !scene.camera.has_lens() {
-            return (in_pixel, glam::Vec2::ZERO);
-        }
-        return (in_pixel, lens.next_2d());
-    }
-    let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
-    let lens = glam::Vec2::new(
-        uniform(settings.seed, pixel, s, 2),
-        uniform(settings.seed, pixel, s, 3),
-    );
-    (glam::Vec2::new(dx, dy), lens)
-}
-
-/// The camera ray of sample `s` of pixel `(x, y)` (index `pixel`), and its film weight: where
-/// [`pixel_and_lens`] puts it, mapped through the filter by importance sampling unless the
-/// filter is the one-pixel box.
-fn camera_sample(
-    scene: &Scene,
-    settings: &RenderSettings,
-    filter: &FilterSampler,
-    (x, y): (u32, u32),
-    pixel: u64,
-    s: u32,
-    sampler: &mut Sampler,
-) -> (Ray, f32) {
-    let (x, y) = (x as f32, y as f32);
-    let (u, lens) = pixel_and_lens(scene, settings, pixel, s, sampler);
-    if settings.filter == Filter::default() {
-        return (scene.camera.ray_through_lens(x + u.x, y + u.y, lens), 1.0);
-    }
-    let (offset, weight) = filter.sample(u);
-    let ray = scene
-        .camera
-        .ray_through_lens(x + 0.5 + offset.x, y + 0.5 + offset.y, lens);
-    (ray, weight)
 }

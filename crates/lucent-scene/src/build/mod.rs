@@ -27,6 +27,7 @@ use lucent::film::filter::Filter;
 use lucent::film::splat::FilterSampling;
 use lucent::integrator::{DebugView, Integrator, PathTracer, Sppm, Whitted};
 use lucent::render::{RenderSettings, Sampling};
+use lucent::scene::Shutter;
 use lucent::scene::{Scene, SceneBuilder};
 use lucent::schedule::adaptive::{Adaptive, MAX_DEPTH as ADAPTIVE_MAX_DEPTH};
 use lucent::shape::TriangleTest;
@@ -365,9 +366,15 @@ pub fn build_with_files(
         warnings,
         ..
     } = ctx;
-    let scene = builder
+    let mut scene = builder
         .build()
         .map_err(|e| LoadError::file(source.path, e.to_string()))?;
+    if let Some(shutter) = &cam.shutter {
+        let [open, close] = shutter.get_ref().map(|t| f64::from(t.0));
+        let s =
+            Shutter::new(open, close).map_err(|e| source.error(shutter.span(), e.to_string()))?;
+        scene = scene.with_shutter(s);
+    }
     Ok(Loaded {
         scene,
         settings,

@@ -34,6 +34,10 @@ pub struct CameraDesc {
     /// How the camera moves (see [`MotionDesc`]): the eye as a point, the view with it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motion: Option<Spanned<MotionDesc>>,
+    /// `[open, close]` in seconds: the render sees the scene over this interval (motion
+    /// blur); without it, at time 0 (or `--time`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shutter: Option<Spanned<[Finite; 2]>>,
 }
 
 fn default_up() -> Vector {

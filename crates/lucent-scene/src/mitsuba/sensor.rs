@@ -16,6 +16,9 @@
 //! `diagonal`); lucent's is vertical. Following Mitsuba's `parse_fov`, it is first turned into
 //! the horizontal angle `fx`, then `fov_y = 2·atan(tan(fx/2) / aspect)` with
 //! `aspect = width / height`.
+//!
+//! `shutter_open` and `shutter_close` (the times it opens and closes, both 0 by default)
+//! become `[camera] shutter`.
 
 use super::Convert;
 use super::transform;
@@ -259,6 +262,15 @@ pub fn read<'a>(
         }
     };
     let point = |p: DVec3| v(p).map(|_| Point(p));
+    let open = p.float_or("shutter_open", 0.0)?;
+    let close = p.float_or("shutter_close", 0.0)?;
+    if close < open {
+        return Err(at.error(format!(
+            "the shutter closes (shutter_close = {close}) before it opens (shutter_open = {open})"
+        )));
+    }
+    let time = |t: f64| Finite(t as f32);
+    let shutter = (close > open).then(|| Spanned::new(0..0, [time(open), time(close)]));
     desc.camera = Spanned::new(
         0..0,
         CameraDesc {
@@ -276,6 +288,7 @@ pub fn read<'a>(
                 Projection::Perspective(_) => None,
             },
             motion: None,
+            shutter,
         },
     );
     desc.image.width = Spanned::new(0..0, width);

@@ -143,6 +143,13 @@ pub fn render_sppm(
             break;
         }
         let k = iterations;
+        // With a shutter, each iteration sees the scene at an instant of its own: its camera
+        // and photon passes together, the instants spread evenly over the shutter in order.
+        let instant = scene
+            .shutter()
+            .filter(|_| scene.blurs())
+            .map(|shutter| scene.at_time(shutter.at(iteration_time(settings.seed, k))));
+        let scene = instant.as_ref().unwrap_or(scene);
         // 1. Camera pass: a visible point and the direct light per pixel. (A stop request
         // ends the render between iterations: one takes well under a second.)
         let camera: Vec<(Option<VisiblePoint<'_>>, Rgb, RayStats)> = (0..pixels)
@@ -258,6 +265,15 @@ pub fn render_sppm(
         samples_range: (iterations, iterations),
         density: Vec::new(),
     }
+}
+
+/// The fraction of the shutter at which iteration `k` sees the scene: `k`'s bits reversed
+/// (so that every run of iterations from the first spreads evenly over the shutter), turned by
+/// an offset from the seed.
+fn iteration_time(seed: u64, k: u32) -> f32 {
+    let spread = (f64::from(k.reverse_bits()) / 2f64.powi(32)) as f32;
+    let u = spread + crate::sampling::uniform(seed, u64::MAX, 0, 4);
+    if u >= 1.0 { u - 1.0 } else { u }
 }
 
 /// The camera path of pixel `i` in iteration `k`: its visible point (if it reaches one) and

@@ -69,12 +69,14 @@ impl Scene {
     /// place (the camera the scene was built with, moved; a camera set on this scene since
     /// is kept only when the camera does not move). A static scene comes back as it is. The
     /// instant is absolute: `at_time` of a scene returned by `at_time` is the same as of the
-    /// scene built.
+    /// scene built. The scene comes back without a shutter: it is one instant.
     ///
     /// Cheap: the static parts are shared, not copied; the arrays of spheres and instances
     /// are copied only when one of them moves.
     pub fn at_time(&self, t: f64) -> Scene {
         let mut scene = self.clone();
+        scene.shutter = None;
+        scene.blur = None;
         scene.place(t);
         scene
     }

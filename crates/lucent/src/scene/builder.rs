@@ -614,6 +614,8 @@ impl SceneBuilder {
             accel: Arc::new(accel),
             moving: None,
             animation,
+            shutter: None,
+            blur: None,
             bounds,
             triangle_test: self.triangle_test,
             origin: self.origin,

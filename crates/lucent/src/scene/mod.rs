@@ -9,7 +9,9 @@
 //!
 //! Objects that move (see [`crate::motion`]) sit in a second, small top level that
 //! [`Scene::at_time`] rebuilds for each instant; everything else is shared between the
-//! instants, so cloning a scene or taking it at another time copies only small arrays.
+//! instants, so cloning a scene or taking it at another time copies only small arrays. A
+//! render through a shutter (see `shutter.rs`) builds that level once, over the boxes the
+//! objects sweep, and moves the objects under it for each sample.
 //!
 //! Ties: when two surfaces are hit at exactly the same `t`, the one added first wins (planes
 //! before spheres, spheres before meshes, lower triangle index first), whatever the
@@ -21,9 +23,11 @@ mod builder;
 mod cutout;
 mod packet;
 mod query;
+mod shutter;
 
 pub use beam::Beam;
 pub use builder::{SceneBuilder, SceneError};
+pub use shutter::{Shutter, ShutterError};
 
 use crate::Rgb;
 use crate::camera::Camera;
@@ -192,6 +196,10 @@ pub struct Scene {
     moving: Option<Arc<Moving>>,
     /// What moves, and how; `None` for a static scene.
     animation: Option<Arc<Animation>>,
+    /// The interval a render sees (see [`Scene::with_shutter`]); `None`: one instant.
+    shutter: Option<Shutter>,
+    /// What a render through the shutter traces; `None` unless something moves.
+    blur: Option<Arc<shutter::Blur>>,
     bounds: Aabb,
     triangle_test: TriangleTest,
     /// See [`SceneBuilder::origin`].

@@ -29,6 +29,7 @@
 use crate::color::Rgb;
 use crate::integrator::{Integrator, RayStats};
 use crate::sampling::sobol::Sampler;
+use crate::sampling::uniform;
 use crate::scene::{Beam, Scene};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -188,6 +189,9 @@ pub struct BandCorners<'a> {
     /// A beam holding every corner ray this is asked for (see [`corner_beam`]), or none:
     /// the corners' hits are found through it, the same bit for bit.
     pub beam: Option<&'a Beam>,
+    /// With a shutter, the tile's copy of the scene from [`Scene::instants`], to trace each
+    /// corner at instants across the shutter.
+    pub instants: Option<&'a Mutex<Scene>>,
 }
 
 /// The beam of the corner rays that the pixels and blocks of the screen rectangle
@@ -211,19 +215,43 @@ pub fn corner_beam(
     Some(scene.beam(&frustum))
 }
 
+/// The hash dimension of a corner's instants.
+const CORNER_TIME: u32 = 4;
+/// Instants a corner is traced at with a shutter.
+const CORNER_INSTANTS: u32 = 8;
+
 /// Corners inside the pixel being worked on.
 type Inner = HashMap<(u32, u32), Rgb, FastHash>;
 
 impl BandCorners<'_> {
+    /// The colour at lattice corner `(i, j)`: with a shutter, its mean over
+    /// [`CORNER_INSTANTS`] instants stratified across it, so that the corners (and the
+    /// contrast between them that decides the splits) are of the blurred image.
     fn trace(&self, i: u32, j: u32, stats: &mut RayStats) -> Rgb {
+        let key = (u64::from(j) << 32) | u64::from(i);
+        let (Some(instants), Some(shutter)) = (self.instants, self.scene.shutter()) else {
+            return self.trace_in(self.scene, i, j, key, stats);
+        };
+        let mut copy = instants.lock().unwrap_or_else(|e| e.into_inner());
+        let mut sum = Rgb::BLACK;
+        for k in 0..CORNER_INSTANTS {
+            let u = (k as f32 + uniform(0, key, k, CORNER_TIME)) / CORNER_INSTANTS as f32;
+            copy.put_at(shutter.at(u));
+            sum += self.trace_in(&copy, i, j, key, stats);
+        }
+        sum * (1.0 / CORNER_INSTANTS as f32)
+    }
+
+    /// The colour at lattice corner `(i, j)` (`key`) in `scene`.
+    fn trace_in(&self, scene: &Scene, i: u32, j: u32, key: u64, stats: &mut RayStats) -> Rgb {
         let step = (1u32 << self.adaptive.depth) as f32;
-        let ray = self.scene.camera.ray(i as f32 / step, j as f32 / step);
+        let ray = scene.camera.ray(i as f32 / step, j as f32 / step);
         stats.camera += 1;
         // Adaptive sampling takes deterministic integrators only; the sampler is for the type.
-        let mut sampler = Sampler::new(0, (u64::from(j) << 32) | u64::from(i), 0);
+        let mut sampler = Sampler::new(0, key, 0);
         let value = self
             .integrator
-            .radiance_in(self.scene, self.beam, &ray, &mut sampler, stats);
+            .radiance_in(scene, self.beam, &ray, &mut sampler, stats);
         if value.is_finite() {
             value
         } else {
