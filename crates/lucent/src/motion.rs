@@ -374,8 +374,14 @@ impl Motion {
 
     /// The transform at time `t` seconds (a `t` that is not finite is taken as 0).
     pub fn at(&self, t: f64) -> Affine3A {
+        self.at_with_scale(t).0
+    }
+
+    /// [`Motion::at`] and [`Motion::scale_at`] together, the keys looked up once.
+    pub fn at_with_scale(&self, t: f64) -> (Affine3A, Vec3) {
         let t = finite_time(t);
-        let mut m = self.keyed(t).affine();
+        let key = self.keyed(t);
+        let mut m = key.affine();
         if self.pivot != DVec3::ZERO {
             let linear = glam::Mat3::from(m.matrix3).as_dmat3();
             let moved = m.translation.as_dvec3() + self.pivot - linear * self.pivot;
@@ -387,7 +393,7 @@ impl Motion {
         if let Some(o) = &self.orbit {
             m = o.at(t) * m;
         }
-        m
+        (m, key.scale)
     }
 
     /// The scale at time `t` (the keys' alone: orbits and swings do not scale), exact where
@@ -427,7 +433,12 @@ impl Motion {
         Key {
             time: local,
             translate: k0.translate.lerp(k1.translate, s),
-            rotate: k0.rotate.slerp(k1.rotate, s),
+            // Keys that only move or scale (the common case) need no slerp.
+            rotate: if k0.rotate == k1.rotate {
+                k0.rotate
+            } else {
+                k0.rotate.slerp(k1.rotate, s)
+            },
             scale: k0.scale.lerp(k1.scale, s),
         }
     }

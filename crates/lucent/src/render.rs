@@ -554,7 +554,9 @@ fn render_tile(
     let mut taken = 0;
     let width = u64::from(scene.camera.width());
     let beam = tile_beam(scene, settings, tile);
-    if let (Some(beam), Integrator::Whitted(whitted)) = (&beam, &settings.integrator) {
+    // The first hits are found for many samples together, in one scene: of one instant.
+    let first_hits = beam.as_ref().filter(|_| !scene.blurs());
+    if let (Some(beam), Integrator::Whitted(whitted)) = (first_hits, &settings.integrator) {
         let tile_beam = TileBeam {
             beam,
             whitted,
@@ -731,14 +733,15 @@ fn beams_apply(settings: &RenderSettings) -> bool {
 }
 
 /// The beam of `tile`'s camera rays, when beams apply ([`beams_apply`]), the camera is a
-/// pinhole and the scene is seen at one instant.
+/// pinhole, and it stands still while the shutter is open.
 ///
 /// A sample lands in `[x, x + 1)` of its pixel, or within the filter's radius of the pixel's
 /// centre when the filter is importance sampled: the tile widened by the radius (at least half
 /// a pixel) holds every camera ray of the tile.
 fn tile_beam(scene: &Scene, settings: &RenderSettings, tile: &Tile) -> Option<Beam> {
-    // A beam holds the rays of one instant; a shutter's samples each see their own.
-    if !beams_apply(settings) || scene.blurs() {
+    // A beam holds the camera rays of one place of the camera (and what stands still: the
+    // moving objects are tested beside it, so they may move under it).
+    if !beams_apply(settings) || (scene.blurs() && scene.camera_moves()) {
         return None;
     }
     let m = settings.filter.radius().max(0.5);

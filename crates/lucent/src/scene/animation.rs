@@ -40,9 +40,10 @@ pub(super) struct Moving {
 /// Sphere `rest` under motion `m` at time `t`: its centre carried as a point, its radius
 /// scaled by the motion's (uniform) scale.
 pub(super) fn moved_sphere(rest: &Sphere, m: &Motion, t: f64) -> Sphere {
+    let (at, scale) = m.at_with_scale(t);
     Sphere {
-        center: m.at(t).transform_point3(rest.center),
-        radius: rest.radius * m.scale_at(t).x,
+        center: at.transform_point3(rest.center),
+        radius: rest.radius * scale.x,
     }
 }
 
