@@ -23,7 +23,11 @@ fn scene(integrator: &str, shutter: bool) -> String {
     );
     for i in 0..8 {
         let (x, z) = (-3.5 + i as f32, -1.0 - (i % 3) as f32);
-        let (kind, material) = if i % 2 == 0 { ("sphere", "b") } else { ("cube", "a") };
+        let (kind, material) = if i % 2 == 0 {
+            ("sphere", "b")
+        } else {
+            ("cube", "a")
+        };
         text += &format!("[[object]]\ntype = \"{kind}\"\nmaterial = \"{material}\"\n");
         text += &match kind {
             "sphere" => format!("center = [{x}, 0.5, {z}]\nradius = 0.5\n"),

@@ -180,7 +180,12 @@ impl Scene {
         let mut boxes = Vec::new();
         for (i, rest, motion) in &anim.spheres {
             primitives.push(Primitive::Sphere(*i));
-            boxes.push(sphere_sweep(shutter, steps_for(shutter, motion), rest, motion));
+            boxes.push(sphere_sweep(
+                shutter,
+                steps_for(shutter, motion),
+                rest,
+                motion,
+            ));
         }
         for (k, placement, motion) in &anim.instances {
             primitives.push(Primitive::Instance(*k));
@@ -252,7 +257,7 @@ impl Scene {
         if !anim.instances.is_empty() {
             let instances = Arc::make_mut(instances);
             for (k, placement, motion) in &anim.instances {
-                if let Some(tr) = Transform::new(motion.at(t) * *placement) {
+                if let Some(tr) = Transform::moved(motion.at(t) * *placement) {
                     instances[*k as usize].0.transform = Some(tr);
                 }
             }
@@ -339,13 +344,19 @@ mod tests {
     fn the_steps_alone_miss_the_object() {
         // Run after (or with) the property above; it sets the flag when an unpadded box missed.
         what_a_sweep_bounds_holds_the_object_at_every_instant();
-        assert!(ESCAPED.load(Ordering::Relaxed), "the padding was never needed");
+        assert!(
+            ESCAPED.load(Ordering::Relaxed),
+            "the padding was never needed"
+        );
     }
 
     #[test]
     fn a_shutter_is_finite_and_forwards() {
         assert!(Shutter::new(0.0, 0.0).is_ok());
-        assert_eq!(Shutter::new(1.0, 0.5), Err(ShutterError::Backwards(1.0, 0.5)));
+        assert_eq!(
+            Shutter::new(1.0, 0.5),
+            Err(ShutterError::Backwards(1.0, 0.5))
+        );
         assert!(Shutter::new(f64::NAN, 1.0).is_err());
         assert_eq!(Shutter::new(2.0, 4.0).unwrap().at(0.25), 2.5);
     }

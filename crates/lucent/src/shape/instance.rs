@@ -61,6 +61,31 @@ impl Transform {
         })
     }
 
+    /// The transform `to_world` for an object that a motion carries, where [`Transform::new`]
+    /// is too slow to call for every sample: the same maps, the normals' from the inverse
+    /// already at hand, and the conditioning not checked again (the placement was, at rest and
+    /// at time 0; a motion only turns, moves and scales by finite positive factors). `None`
+    /// when something is not finite.
+    pub fn moved(to_world: Affine3A) -> Option<Self> {
+        let to_object = to_world.inverse();
+        let inverse_transpose = Mat3::from(to_object.matrix3).transpose();
+        let largest = [
+            inverse_transpose.x_axis,
+            inverse_transpose.y_axis,
+            inverse_transpose.z_axis,
+        ]
+        .iter()
+        .map(|c| c.abs().max_element())
+        .fold(0.0, f32::max);
+        let normal_to_world = inverse_transpose * largest.recip();
+        let finite = to_world.is_finite() && to_object.is_finite() && normal_to_world.is_finite();
+        finite.then_some(Self {
+            to_world,
+            to_object,
+            normal_to_world,
+        })
+    }
+
     /// The object-to-world map.
     pub fn to_world(&self) -> Affine3A {
         self.to_world
