@@ -65,6 +65,36 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
             kinds.join(", ")
         );
     }
+    let images: Vec<_> = scene
+        .lights
+        .iter()
+        .filter_map(|l| match l {
+            lucent::light::Light::Image(i) => Some(i),
+            _ => None,
+        })
+        .collect();
+    if !images.is_empty() {
+        use lucent::light::Mapping;
+        let kinds: Vec<String> = images
+            .iter()
+            .map(|l| {
+                let (w, h) = l.image.size();
+                let kind = match (l.image.mapping(), l.image.cone()) {
+                    (_, Some(_)) => "textured spot",
+                    (Mapping::Projection { .. }, None) => "projection",
+                    (Mapping::EqualArea, None) => "goniometric, equal-area",
+                    (Mapping::LatLong, None) => "goniometric, lat-long",
+                };
+                format!("{kind} {w}×{h}")
+            })
+            .collect();
+        let flux: f32 = images.iter().map(|l| l.power().luminance()).sum();
+        println!(
+            "image:       {} ({}), flux {flux:.3} (∫ I dω, as luminance)",
+            images.len(),
+            kinds.join("; ")
+        );
+    }
     println!("materials:   {}", c.materials);
     if scene.is_animated() {
         let n = scene.moving_objects();

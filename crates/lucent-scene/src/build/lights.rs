@@ -6,7 +6,7 @@ use crate::desc::{FalloffName, LightKind, SceneDesc, TexelsName};
 use crate::error::LoadError;
 use glam::Vec3;
 use lucent::Rgb;
-use lucent::light::{DirectionalLight, Falloff, Light, PointLight, SpotLight};
+use lucent::light::{Cone, DirectionalLight, Falloff, Light, PointLight, SpotLight};
 use lucent::texture::image::LatLongTexels;
 
 /// An emitting object's surface: its area and (area-weighted) centre, in world space.
@@ -45,13 +45,27 @@ pub fn add_lights(
             ("rotation", span(&d.rotation)),
             ("front", span(&d.front)),
             ("texels", span(&d.texels)),
+            ("mapping", span(&d.mapping)),
+            ("up", span(&d.up)),
+            ("fov", span(&d.fov)),
         ];
         let takes: &[&str] = match d.kind {
             LightKind::Point => &["position", "falloff"],
+            LightKind::Spot if d.file.is_some() => &[
+                "position",
+                "falloff",
+                "direction",
+                "cutoff",
+                "cutoff_start",
+                "file",
+                "up",
+            ],
             LightKind::Spot => &["position", "falloff", "direction", "cutoff", "cutoff_start"],
             LightKind::Directional => &["direction"],
             LightKind::Environment => &["file", "rotation", "texels"],
             LightKind::Photometric => &["file", "position", "falloff", "direction", "front"],
+            LightKind::Goniometric => &["file", "mapping", "position", "up", "front", "falloff"],
+            LightKind::Projection => &["file", "position", "direction", "up", "fov", "falloff"],
         };
         let others: Vec<_> = keys
             .into_iter()
@@ -73,7 +87,11 @@ pub fn add_lights(
                     .get_ref()
                     .0,
             );
+            // Lights given in physical terms (an image of intensities) fall off as 1/d² unless
+            // told otherwise; the classic ones do not.
+            let physical = matches!(d.kind, LightKind::Goniometric | LightKind::Projection);
             let falloff = match d.falloff.as_ref().map(|f| *f.get_ref()) {
+                None if physical => Falloff::Quadratic,
                 None | Some(FalloffName::None) if sppm => Falloff::Quadratic,
                 None | Some(FalloffName::None) => Falloff::None,
                 Some(FalloffName::Quadratic) => Falloff::Quadratic,
@@ -84,17 +102,25 @@ pub fn add_lights(
                 falloff,
             })
         };
-        if sppm
-            && matches!(d.kind, LightKind::Point | LightKind::Spot)
-            && d.falloff
+        let said_none = |unset: bool| {
+            d.falloff
                 .as_ref()
-                .is_none_or(|f| *f.get_ref() == FalloffName::None)
-        {
+                .map_or(unset, |f| *f.get_ref() == FalloffName::None)
+        };
+        let classic = match d.kind {
+            LightKind::Point | LightKind::Spot => said_none(true),
+            LightKind::Goniometric | LightKind::Projection => said_none(false),
+            _ => false,
+        };
+        if sppm && classic {
             made_physical += 1;
         }
         let light = match d.kind {
             LightKind::Point => Light::Point(point(ctx)?),
             LightKind::Photometric => super::photometric::light(ctx, l, intensity, sppm)?,
+            LightKind::Goniometric | LightKind::Projection => {
+                super::image_lights::light(ctx, l, point(ctx)?)?
+            }
             LightKind::Directional => Light::Directional(DirectionalLight {
                 direction: direction(ctx)?,
                 intensity,
@@ -117,12 +143,25 @@ pub fn add_lights(
                     Some(s) => s.get_ref().0,
                     None => outer,
                 };
-                Light::Spot(SpotLight {
-                    point: point(ctx)?,
-                    direction: direction(ctx)?,
+                let cone = Cone {
                     cos_cutoff: outer.to_radians().cos(),
                     cos_start: inner.to_radians().cos(),
-                })
+                };
+                match &d.file {
+                    Some(file) => super::image_lights::textured_spot(
+                        ctx,
+                        l,
+                        point(ctx)?,
+                        (direction(ctx)?, cone),
+                        file,
+                    )?,
+                    None => Light::Spot(SpotLight {
+                        point: point(ctx)?,
+                        direction: direction(ctx)?,
+                        cos_cutoff: cone.cos_cutoff,
+                        cos_start: cone.cos_start,
+                    }),
+                }
             }
             LightKind::Environment => {
                 if environment.is_some() {

@@ -2,6 +2,7 @@
 //!
 //! Every error points at the value at fault in the scene file (or at the line of a mesh file).
 
+mod image_lights;
 mod lights;
 pub mod materials;
 mod motion;

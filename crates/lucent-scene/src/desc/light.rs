@@ -21,6 +21,12 @@ pub enum LightKind {
     /// `file` (an IES photometric file), `position`, `direction`, `front`, `intensity`,
     /// `falloff`: a point light as strong in each direction as the file's candela table says.
     Photometric,
+    /// `file` (an image of intensity over the sphere), `mapping`, `position`, `up`, `front`,
+    /// `intensity`, `falloff`.
+    Goniometric,
+    /// `file` (an image), `position`, `direction`, `up`, `fov`, `intensity`, `falloff`: an
+    /// image thrown through a frustum.
+    Projection,
 }
 
 impl LightKind {
@@ -32,6 +38,8 @@ impl LightKind {
             LightKind::Directional => "directional light",
             LightKind::Environment => "environment light",
             LightKind::Photometric => "photometric light",
+            LightKind::Goniometric => "goniometric light",
+            LightKind::Projection => "projection light",
         }
     }
 }
@@ -45,6 +53,18 @@ pub enum TexelsName {
     Cells,
     /// Columns centred in their cells, rows from pole to pole (Mitsuba's `envmap`).
     Poles,
+}
+
+/// How a goniometric light's image lies on the sphere (`lucent::light::Mapping`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+pub enum MappingName {
+    /// pbrt-v4's equal-area square.
+    #[default]
+    #[serde(rename = "equal-area")]
+    EqualArea,
+    /// Latitude and longitude.
+    #[serde(rename = "latlong")]
+    LatLong,
 }
 
 /// How a point light falls off.
@@ -74,8 +94,8 @@ pub struct LightDesc {
     /// Point, spot: `"none"` (default) or `"quadratic"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub falloff: Option<Spanned<FalloffName>>,
-    /// Directional, spot: the direction the light travels in (non-zero). Photometric: where
-    /// the luminaire's nadir points (default `[0, −1, 0]`, straight down).
+    /// Directional, spot, projection: the direction the light travels in (non-zero).
+    /// Photometric: where the luminaire's nadir points (default `[0, −1, 0]`, straight down).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<Spanned<Vector>>,
     /// Spot: the cone's half-angle in degrees, in (0, 90].
@@ -87,6 +107,7 @@ pub struct LightDesc {
     pub cutoff_start: Option<Spanned<Finite>>,
     /// Environment: a lat-long (equirectangular) image, relative to the scene file's folder;
     /// +y is up, the image's centre column looks along −z. Photometric: an IES file.
+    /// Goniometric, projection: the image of intensities. Spot: an image across the cone.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<Spanned<String>>,
     /// Environment: its orientation, a rotation (as a 4×4 matrix, row by row, whose
@@ -95,11 +116,22 @@ pub struct LightDesc {
     pub rotation: Option<Spanned<Matrix>>,
     /// Photometric: where the luminaire's length points (its `C = 0°` half-plane; default
     /// `[1, 0, 0]`, or `[0, 0, −1]` for a nadir along x), made perpendicular to `direction`.
+    /// Goniometric: where the map's `+x` lies about `up` (default `[1, 0, 0]`, or `[0, 0, −1]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub front: Option<Spanned<Vector>>,
     /// Environment: where the image's texels lie (default `"cells"`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub texels: Option<Spanned<TexelsName>>,
+    /// Goniometric: how the image lies on the sphere (default `"equal-area"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mapping: Option<Spanned<MappingName>>,
+    /// Goniometric: the pole of the image's map (default `[0, 1, 0]`). Projection: the image's
+    /// up (default `[0, 1, 0]`), made perpendicular to `direction`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub up: Option<Spanned<Vector>>,
+    /// Projection: the vertical angle the image spans, in degrees (default 30).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fov: Option<Spanned<Finite>>,
 }
 
 impl LightDesc {
@@ -117,6 +149,9 @@ impl LightDesc {
             rotation: None,
             front: None,
             texels: None,
+            mapping: None,
+            up: None,
+            fov: None,
         }
     }
 }

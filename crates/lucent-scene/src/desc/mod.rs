@@ -15,7 +15,7 @@ pub mod texture;
 pub mod values;
 
 pub use camera::CameraDesc;
-pub use light::{FalloffName, LightDesc, LightKind, TexelsName};
+pub use light::{FalloffName, LightDesc, LightKind, MappingName, TexelsName};
 pub use material::{MaterialDesc, MaterialKind};
 pub use motion::{KeyDesc, MotionDesc, OrbitDesc, OscillateDesc, RepeatName};
 pub use object::{ObjectDesc, ObjectKind};

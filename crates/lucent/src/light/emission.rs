@@ -53,6 +53,7 @@ use super::area::{AreaLights, EmitterShape};
 use super::directional::DirectionalLight;
 use super::emitters::{Emitters, Entry};
 use super::environment::EnvironmentLight;
+use super::image_light::ImageLight;
 use super::photometric::PhotometricLight;
 use super::point::PointLight;
 use super::spot::SpotLight;
@@ -127,6 +128,7 @@ impl Emitters {
                 Light::Spot(l) => spot_photon(l, u_dir),
                 Light::Directional(l) => directional_photon(l, bounds, u_pos),
                 Light::Photometric(l) => photometric_photon(l, u_dir),
+                Light::Image(l) => image_photon(l, u_dir),
             },
             Entry::Area(j) => area_photon(&self.area, j as usize, u_rest, u_pos, u_dir),
             Entry::Environment => environment_photon(
@@ -161,6 +163,7 @@ impl Emitters {
                 Light::Spot(s) => s.point.intensity * (2.0 * PI * spot_cone_integral(s)),
                 Light::Directional(d) => d.intensity * (PI * r2),
                 Light::Photometric(l) => l.point.intensity * l.profile.total(),
+                Light::Image(l) => l.power(),
             };
         }
         for l in &self.area.lights {
@@ -196,6 +199,23 @@ fn photometric_photon(l: &PhotometricLight, u_dir: Vec2) -> Option<Photon> {
         // The frame's inverse is its transpose (a rotation).
         dir: (l.to_luminaire.transpose() * local).normalize(),
         power: l.point.intensity * (intensity / pdf),
+        from_object: None,
+    })
+}
+
+/// A photon of an image light: a direction drawn from its image's distribution, carrying
+/// `I(ω) / p(ω)`.
+fn image_photon(l: &ImageLight, u_dir: Vec2) -> Option<Photon> {
+    let (local, pdf) = l.image.sample(u_dir)?;
+    let intensity = l.image.intensity(local);
+    if intensity.is_black() {
+        return None;
+    }
+    Some(Photon {
+        origin: l.point.position,
+        // The frame's inverse is its transpose (orthonormal).
+        dir: (l.to_light.transpose() * local).normalize(),
+        power: l.point.intensity * intensity * (1.0 / pdf),
         from_object: None,
     })
 }

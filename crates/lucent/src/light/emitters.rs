@@ -163,7 +163,8 @@ impl Emitters {
 
 /// The power of a point-like light, for picking: a point light sends `4π·I`, a spot light
 /// `2π·I` times its cone's share, a directional light `π·r²·I` through the scene's disc, a
-/// photometric light its colour's `I` times its profile's `∫ I dω`.
+/// photometric light its colour's `I` times its profile's `∫ I dω`, an image light its
+/// `∫ I dω` per channel.
 fn delta_power(l: &Light, radius: f32) -> f32 {
     match l {
         Light::Point(p) => 4.0 * PI * luminance(p.intensity),
@@ -175,5 +176,6 @@ fn delta_power(l: &Light, radius: f32) -> f32 {
         }) => 2.0 * PI * luminance(point.intensity) * (1.0 - 0.5 * (cos_cutoff + cos_start)),
         Light::Directional(d) => PI * radius * radius * luminance(d.intensity),
         Light::Photometric(l) => l.profile.total() * luminance(l.point.intensity),
+        Light::Image(l) => luminance(l.power()),
     }
 }

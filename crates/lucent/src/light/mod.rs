@@ -12,6 +12,7 @@ pub mod directional;
 pub mod emission;
 pub mod emitters;
 pub mod environment;
+pub mod image_light;
 pub mod photometric;
 pub mod point;
 pub mod spot;
@@ -20,6 +21,7 @@ pub use area::{AreaLights, EmitterSample};
 pub use emission::{Photon, bounding_sphere};
 pub use emitters::Emitters;
 pub use environment::EnvironmentLight;
+pub use image_light::{Cone, ImageLight, IntensityImage, IntensityImageError, Mapping};
 
 pub use directional::DirectionalLight;
 pub use photometric::{Goniometry, PhotometricLight, Profile, ProfileError};
@@ -40,6 +42,9 @@ pub enum Light {
     Directional(DirectionalLight),
     /// Light from one point, as strong in each direction as a measured table says.
     Photometric(PhotometricLight),
+    /// Light from one point, as strong in each direction as an image says: goniometric
+    /// lights, projectors and spot lights with a texture.
+    Image(ImageLight),
 }
 
 /// A light as seen from a shaded point.
@@ -60,6 +65,7 @@ impl Light {
             Light::Point(p) => Some(p.position),
             Light::Spot(s) => Some(s.point.position),
             Light::Photometric(l) => Some(l.point.position),
+            Light::Image(l) => Some(l.point.position),
             Light::Directional(_) => None,
         }
     }
@@ -72,6 +78,7 @@ impl Light {
             Light::Spot(l) => l.illuminate(p),
             Light::Directional(l) => Some(l.illuminate()),
             Light::Photometric(l) => l.illuminate(p),
+            Light::Image(l) => l.illuminate(p),
         }
     }
 }

@@ -211,6 +211,11 @@ impl ImageTexture {
         self.base.height
     }
 
+    /// The texels, row by row from the top.
+    pub fn texels(&self) -> &[Rgb] {
+        &self.base.texels
+    }
+
     /// The image with every texel multiplied by `scale`.
     pub fn scaled(mut self, scale: Rgb) -> Self {
         for t in &mut self.base.texels {
