@@ -90,7 +90,7 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
             .collect();
         let flux: f32 = images.iter().map(|l| l.power().luminance()).sum();
         println!(
-            "image:       {} ({}), flux {flux:.3} (∫ I dω, as luminance)",
+            "image light: {} ({}), flux {flux:.3} (∫ I dω, as luminance)",
             images.len(),
             kinds.join("; ")
         );
@@ -110,8 +110,9 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
         match scene.shutter() {
             Some(s) => println!(
                 "motion:      {objects}, {camera} (blurred over the shutter, t = {} to {} s; `--time` picks one instant)",
-                s.open(),
-                s.close()
+                // As written (the file's times are single precision).
+                s.open() as f32,
+                s.close() as f32
             ),
             None => {
                 let t = job.overrides.time.unwrap_or(0.0);
@@ -123,8 +124,8 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
     } else if let Some(s) = scene.shutter() {
         println!(
             "shutter:     open from t = {} to {} s (nothing moves: no blur)",
-            s.open(),
-            s.close()
+            s.open() as f32,
+            s.close() as f32
         );
     }
     let b = scene.bounds();

@@ -143,6 +143,39 @@ fn info_states_a_photometric_lights_flux() {
 }
 
 #[test]
+fn info_states_lights_from_images_and_the_shutter() {
+    let info = |scene: &str, extra: &[&str]| {
+        let output = lucent()
+            .arg("info")
+            .arg(workspace().join(scene))
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_success(&output);
+        String::from_utf8(output.stdout).unwrap()
+    };
+    let projector = info("examples/projector.toml", &[]);
+    assert!(
+        projector.contains("image light: 2 (projection 192×144; textured spot 128×128), flux "),
+        "{projector}"
+    );
+    let lantern = info("examples/lantern.toml", &[]);
+    assert!(
+        lantern.contains("image light: 1 (goniometric, lat-long 1024×512)"),
+        "{lantern}"
+    );
+    let car = info("examples/passing-car.toml", &[]);
+    assert!(
+        car.contains(
+            "11 objects move, the camera stands still (blurred over the shutter, t = 0 to 0.04 s;"
+        ),
+        "{car}"
+    );
+    let instant = info("examples/passing-car.toml", &["--time", "0.01"]);
+    assert!(instant.contains("(shown at t = 0.01 s;"), "{instant}");
+}
+
+#[test]
 fn info_counts_the_bunny_triangles() {
     let bunny = workspace().join("examples/bunny.toml");
     if !workspace()

@@ -183,3 +183,33 @@ fn fov_axis_gives_the_right_vertical_fov() {
         );
     }
 }
+
+#[test]
+fn a_sensors_shutter_is_the_cameras() {
+    let dir = Dir::new("shutter");
+    let sensor = |times: &str| {
+        scene(&format!(
+            "    <sensor type=\"perspective\">\n        {times}\n    </sensor>\n    <shape type=\"sphere\"/>"
+        ))
+    };
+    let path = dir.write(
+        "open.xml",
+        &sensor(
+            r#"<float name="shutter_open" value="0.5"/><float name="shutter_close" value="1.25"/>"#,
+        ),
+    );
+    let (file, loaded) = load(&path);
+    let shutter = file.desc.camera.get_ref().shutter.as_ref().unwrap();
+    assert_eq!(shutter.get_ref().map(|t| t.0), [0.5, 1.25]);
+    let s = loaded.scene.shutter().unwrap();
+    assert_eq!((s.open(), s.close()), (0.5, 1.25));
+    // Mitsuba's default, closed at once, is no shutter.
+    let path = dir.write("none.xml", &sensor(""));
+    assert!(load(&path).0.desc.camera.get_ref().shutter.is_none());
+    // Closing before opening is Mitsuba's error too.
+    let text =
+        sensor(r#"<float name="shutter_open" value="2"/><float name="shutter_close" value="1"/>"#);
+    let path = dir.write("backwards.xml", &text);
+    let e = import_error(&path, &open());
+    assert!(e.to_string().contains("before it opens"), "{e}");
+}
