@@ -194,7 +194,7 @@ fn a_sensors_shutter_is_the_cameras() {
     };
     let path = dir.write(
         "open.xml",
-        &sensor(
+        sensor(
             r#"<float name="shutter_open" value="0.5"/><float name="shutter_close" value="1.25"/>"#,
         ),
     );
@@ -204,7 +204,7 @@ fn a_sensors_shutter_is_the_cameras() {
     let s = loaded.scene.shutter().unwrap();
     assert_eq!((s.open(), s.close()), (0.5, 1.25));
     // Mitsuba's default, closed at once, is no shutter.
-    let path = dir.write("none.xml", &sensor(""));
+    let path = dir.write("none.xml", sensor(""));
     assert!(load(&path).0.desc.camera.get_ref().shutter.is_none());
     // Closing before opening is Mitsuba's error too.
     let text =
