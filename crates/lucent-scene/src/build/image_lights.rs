@@ -2,6 +2,7 @@
 //! `type = "projection"` (an image thrown through a frustum) and `type = "spot"` with a `file`
 //! (the image across the spot's cone).
 
+use super::photometric::perpendicular;
 use super::{Context, required};
 use crate::desc::texture::Encoding;
 use crate::desc::{LightDesc, MappingName};
@@ -28,13 +29,6 @@ fn intensity_image(
     IntensityImage::new(mapping(w, h), cone, w, h, image.texels().to_vec())
         .map(Arc::new)
         .map_err(|e| LoadError::file(&path, e.to_string()))
-}
-
-/// Unit `v` made perpendicular to unit `axis`; `None` when it lies along it.
-fn perpendicular(v: Vec3, axis: Vec3) -> Option<Vec3> {
-    (v - axis * v.dot(axis))
-        .try_normalize()
-        .filter(|p| p.dot(v.normalize_or_zero()) > 1e-3)
 }
 
 /// A unit vector from the optional key `v` (or `default`), refused when zero.

@@ -78,7 +78,7 @@ pub fn light(
 }
 
 /// Unit `v` made perpendicular to unit `axis`; `None` when it lies along it.
-fn perpendicular(v: Vec3, axis: Vec3) -> Option<Vec3> {
+pub(super) fn perpendicular(v: Vec3, axis: Vec3) -> Option<Vec3> {
     (v - axis * v.dot(axis))
         .try_normalize()
         .filter(|p| p.dot(v.normalize_or_zero()) > 1e-3)

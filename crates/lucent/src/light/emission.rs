@@ -221,17 +221,9 @@ fn image_photon(l: &ImageLight, u_dir: Vec2) -> Option<Photon> {
 }
 
 /// The smooth edge of a spot light at `cos` from its axis, exactly as
-/// [`SpotLight::illuminate`] applies it: 0 outside `cos_cutoff`, smoothstep in the cosine up to
-/// `cos_start`, 1 inside.
+/// [`SpotLight::illuminate`] applies it.
 fn spot_edge(l: &SpotLight, cos: f32) -> f32 {
-    if cos <= l.cos_cutoff {
-        0.0
-    } else if cos < l.cos_start {
-        let x = (cos - l.cos_cutoff) / (l.cos_start - l.cos_cutoff);
-        x * x * (3.0 - 2.0 * x)
-    } else {
-        1.0
-    }
+    l.cone().edge(cos)
 }
 
 /// `∫ edge(c) dc` over the cosines `c ∈ [−1, 1]`: the spot light's flux is `2π·I` times this.

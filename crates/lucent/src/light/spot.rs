@@ -1,6 +1,7 @@
 //! Spot lights: point lights that shine into a cone.
 
 use super::LightSample;
+use super::image_light::Cone;
 use super::point::PointLight;
 use glam::Vec3;
 
@@ -22,15 +23,22 @@ impl SpotLight {
     /// The light reaching `p`, if it lies inside the cone.
     pub fn illuminate(&self, p: Vec3) -> Option<LightSample> {
         let mut s = self.point.illuminate(p)?;
-        let cos = (-s.to_light).dot(self.direction);
-        if cos <= self.cos_cutoff {
+        let edge = self.cone().edge((-s.to_light).dot(self.direction));
+        if edge == 0.0 {
             return None;
         }
-        if cos < self.cos_start {
-            let x = (cos - self.cos_cutoff) / (self.cos_start - self.cos_cutoff);
-            s.intensity = s.intensity * (x * x * (3.0 - 2.0 * x));
+        if edge < 1.0 {
+            s.intensity = s.intensity * edge;
         }
         Some(s)
+    }
+
+    /// Its cone's edge.
+    pub fn cone(&self) -> Cone {
+        Cone {
+            cos_cutoff: self.cos_cutoff,
+            cos_start: self.cos_start,
+        }
     }
 }
 

@@ -22,6 +22,21 @@ pub struct Transform {
     normal_to_world: Mat3,
 }
 
+/// The inverse transpose of a placement's linear part, scaled so that its largest entry is 1: a
+/// normal is normalised after the map, so a uniform factor is free, and this one keeps a huge or
+/// tiny placement's normals in range.
+fn normal_matrix(inverse_transpose: Mat3) -> Mat3 {
+    let largest = [
+        inverse_transpose.x_axis,
+        inverse_transpose.y_axis,
+        inverse_transpose.z_axis,
+    ]
+    .iter()
+    .map(|c| c.abs().max_element())
+    .fold(0.0, f32::max);
+    inverse_transpose * largest.recip()
+}
+
 impl Transform {
     /// The transform `to_world`, or `None` when it cannot be inverted in single precision: a
     /// determinant that is zero or not finite, an inverse that overflows, or a placement so far
@@ -33,18 +48,7 @@ impl Transform {
             return None;
         }
         let to_object = to_world.inverse();
-        let inverse_transpose = Mat3::from(to_world.matrix3).inverse().transpose();
-        // A normal is normalised after the map, so a uniform factor on the matrix is free: one
-        // that makes its largest entry 1 keeps a huge or tiny placement's normals in range.
-        let largest = [
-            inverse_transpose.x_axis,
-            inverse_transpose.y_axis,
-            inverse_transpose.z_axis,
-        ]
-        .iter()
-        .map(|c| c.abs().max_element())
-        .fold(0.0, f32::max);
-        let normal_to_world = inverse_transpose * largest.recip();
+        let normal_to_world = normal_matrix(Mat3::from(to_world.matrix3).inverse().transpose());
         // The ratio of the extreme scales bounds how short a mapped normal gets (the normal
         // matrix's singular values are the reciprocals of the placement's): the product of the
         // Frobenius norms of the map and its inverse bounds that ratio from above.
@@ -68,16 +72,7 @@ impl Transform {
     /// when something is not finite.
     pub fn moved(to_world: Affine3A) -> Option<Self> {
         let to_object = to_world.inverse();
-        let inverse_transpose = Mat3::from(to_object.matrix3).transpose();
-        let largest = [
-            inverse_transpose.x_axis,
-            inverse_transpose.y_axis,
-            inverse_transpose.z_axis,
-        ]
-        .iter()
-        .map(|c| c.abs().max_element())
-        .fold(0.0, f32::max);
-        let normal_to_world = inverse_transpose * largest.recip();
+        let normal_to_world = normal_matrix(Mat3::from(to_object.matrix3).transpose());
         let finite = to_world.is_finite() && to_object.is_finite() && normal_to_world.is_finite();
         finite.then_some(Self {
             to_world,
