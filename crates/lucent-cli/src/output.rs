@@ -180,6 +180,8 @@ pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Res
             encoder.set_color(png::ColorType::Rgb);
             encoder.set_depth(png::BitDepth::Eight);
             encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+            // fdeflate: a 2400×1800 render's PNG in a fraction of the default's time.
+            encoder.set_compression(png::Compression::Fast);
             encoder.add_text_chunk("lucent.samples".into(), samples.clone())?;
             let mut writer = encoder.write_header()?;
             let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.map(srgb8)).collect();

@@ -652,7 +652,7 @@ fn render_tile_first_hits(
     for chunk in todo.chunks(FIRST_PASS) {
         let rays: Vec<Ray> = chunk.iter().map(|e| e.2).collect();
         let first = crate::first_hits::first_hits(scene, tb.beam, &rays, shadows, &mut stats);
-        for (&((px, py), first_of_pixel, ray, weight), hit) in chunk.iter().zip(first.hits) {
+        for (&((px, py), first_of_pixel, ray, weight), hit) in chunk.iter().zip(&first.hits) {
             if first_of_pixel && deadline.is_some_and(|d| Instant::now() >= d) {
                 return (stats, taken);
             }
@@ -660,9 +660,9 @@ fn render_tile_first_hits(
                 return (stats, taken);
             }
             stats.camera += 1;
-            let value = tb
-                .whitted
-                .radiance_from_hit(scene, &first.shadows, &ray, hit, &mut stats);
+            let value =
+                tb.whitted
+                    .radiance_from_hit(scene, &first.shadows, &ray, hit.as_ref(), &mut stats);
             let finite = value.is_finite() && weight.is_finite();
             stats.nonfinite += u64::from(!finite);
             part.add_sample(px, py, finite.then_some(value), weight);

@@ -56,10 +56,15 @@ pub(super) fn draw(
         };
     }
     let (dx, dy) = pixel_offset(settings.seed, pixel, s, settings.spp);
-    let lens = Vec2::new(
-        uniform(settings.seed, pixel, s, 2),
-        uniform(settings.seed, pixel, s, 3),
-    );
+    // Hashed only for a lens: a pinhole's rays do not read it.
+    let lens = if scene.camera.has_lens() {
+        Vec2::new(
+            uniform(settings.seed, pixel, s, 2),
+            uniform(settings.seed, pixel, s, 3),
+        )
+    } else {
+        Vec2::ZERO
+    };
     let time = scene.blurs().then(|| {
         let n = settings.spp.max(s + 1);
         let stratum = permute(s, n, hash(settings.seed, pixel, 0, TIME_DIMENSION));
