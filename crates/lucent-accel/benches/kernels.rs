@@ -1,5 +1,5 @@
 //! The inner kernels: ray–box, ray–triangle, and traversal of every structure over the same
-//! rays, at three scene sizes. Run: `cargo bench -p lucent-accel --bench kernels`.
+//! rays, at three scene sizes; the wide BVH's build. Run: `cargo bench -p lucent-accel --bench kernels`.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec3;
@@ -135,5 +135,19 @@ fn traversal(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, box_and_triangle, traversal);
+/// The build of the wide BVH over packed triangles (what a mesh costs at load), on one thread.
+fn build(c: &mut Criterion) {
+    let mut g = c.benchmark_group("wide_triangle_build");
+    g.sample_size(10);
+    for n in [30_000usize, 300_000] {
+        let (positions, tris) = triangles(n);
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |bench, _| {
+            bench.iter(|| WideTriangleBvh::new(black_box(&positions), black_box(&tris)))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, box_and_triangle, traversal, build);
 criterion_main!(benches);
