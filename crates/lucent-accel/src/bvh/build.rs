@@ -9,7 +9,7 @@
 
 use super::{Bvh, Node};
 use crate::Aabb;
-use glam::Vec3A;
+use glam::{Vec3A, Vec4};
 
 /// Most bins per axis.
 pub const MAX_BINS: usize = 32;
@@ -85,14 +85,52 @@ impl Box3 {
     }
 }
 
-/// A primitive as the builder moves it around: its box, centre and index, kept together so
-/// that each pass reads memory in order.
+/// A primitive as the builder moves it around: its box with its index in the corners' fourth
+/// lanes, 32 bytes (Embree's layout). The passes over a node stream these; with the
+/// centre stored beside them they were twice the size, and the top levels of a large mesh's
+/// build waited on memory.
 #[derive(Clone, Copy)]
 struct Ref {
-    bounds: Box3,
-    center: Vec3A,
-    index: u32,
+    lo: Vec4,
+    hi: Vec4,
 }
+
+impl Ref {
+    fn new(bounds: Box3, index: u32) -> Ref {
+        Ref {
+            lo: bounds.lo.extend(f32::from_bits(index & 0xffff | INDEX_TAG)),
+            hi: bounds.hi.extend(f32::from_bits(index >> 16 | INDEX_TAG)),
+        }
+    }
+
+    #[inline(always)]
+    fn bounds(&self) -> Box3 {
+        Box3 {
+            lo: Vec3A::from_vec4(self.lo),
+            hi: Vec3A::from_vec4(self.hi),
+        }
+    }
+
+    /// The box's centre, [`Aabb::center`] bit for bit; an empty or infinite box has no usable
+    /// centre, and any bin will do: the origin.
+    #[inline(always)]
+    fn center(&self) -> Vec3A {
+        let b = self.bounds();
+        let c = 0.5 * (b.lo + b.hi);
+        if c.is_finite() { c } else { Vec3A::ZERO }
+    }
+
+    fn index(&self) -> u32 {
+        let half = |w: f32| w.to_bits() & !INDEX_TAG;
+        half(self.lo.w) | half(self.hi.w) << 16
+    }
+}
+
+/// Set in the bits of a [`Ref`]'s index lanes (the index's low 16 bits in the lower corner's,
+/// its high 16 in the upper's), so that they are normal floats: the box arithmetic runs over
+/// all four lanes, and a small number's bits are a subnormal, on which every operation took a
+/// microcode assist (the build ran at half speed).
+const INDEX_TAG: u32 = 0x4000_0000;
 
 /// A bin: how many primitives fell in and the box of their boxes.
 #[derive(Clone, Copy)]
@@ -150,14 +188,7 @@ impl Bvh {
                     lo: b.min.into(),
                     hi: b.max.into(),
                 };
-                // An empty or infinite box has no usable centre; any bin will do.
-                let c = b.center();
-                let center = if c.is_finite() { c.into() } else { Vec3A::ZERO };
-                Ref {
-                    bounds,
-                    center,
-                    index: i as u32,
-                }
+                Ref::new(bounds, i as u32)
             })
             .collect();
         let options = BuildOptions {
@@ -206,7 +237,7 @@ impl Bvh {
                 });
             }
         }
-        let prims = b.refs.iter().map(|r| r.index).collect();
+        let prims = b.refs.iter().map(Ref::index).collect();
         Self {
             nodes: b.nodes,
             prims,
@@ -229,7 +260,7 @@ impl Builder {
         self.refs[start..end]
             .iter()
             .fold((Box3::EMPTY, Box3::EMPTY), |(b, c), r| {
-                (b.union(r.bounds), c.grow(r.center))
+                (b.union(r.bounds()), c.grow(r.center()))
             })
     }
 
@@ -315,11 +346,11 @@ impl Builder {
         let (lo, scale) = (w.centroids.lo, self.scale(w.centroids));
         let mut bins = [[EMPTY_BIN; N]; 3];
         for r in &self.refs[w.start..w.end] {
-            let k = self.bins_of(r.center, lo, scale);
+            let k = self.bins_of(r.center(), lo, scale);
             for axis in 0..3 {
                 let bin = &mut bins[axis][k[axis]];
                 bin.count += 1;
-                bin.bounds = bin.bounds.union(r.bounds);
+                bin.bounds = bin.bounds.union(r.bounds());
             }
         }
         let parent_area = w.bounds.area().max(f32::MIN_POSITIVE);
@@ -380,7 +411,7 @@ impl Builder {
         let refs = &mut self.refs[start..end];
         let mut i = 0;
         for j in 0..refs.len() {
-            let c = refs[j].center;
+            let c = refs[j].center();
             let is_left = bin_on_axis(c[axis], lo[axis], scale[axis], top) < bin;
             let side = glam::BVec3A::splat(is_left);
             left.lo = Vec3A::select(side, left.lo.min(c), left.lo);
@@ -398,7 +429,7 @@ impl Builder {
     fn median_split(&mut self, start: usize, end: usize, axis: usize) -> Halves {
         let mid = start + (end - start) / 2;
         self.refs[start..end].select_nth_unstable_by(mid - start, |a, b| {
-            a.center[axis].total_cmp(&b.center[axis])
+            a.center()[axis].total_cmp(&b.center()[axis])
         });
         self.halves(start, end, mid)
     }
@@ -437,6 +468,24 @@ fn merge(a: Bin, b: Bin) -> Bin {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn a_ref_keeps_its_index_and_centre() {
+        let bounds = Box3 {
+            lo: Vec3A::new(-1.0, 2.0, 3.0),
+            hi: Vec3A::new(1.0, 2.5, 7.0),
+        };
+        for index in [0, 1, 0xffff, 0x1_0000, 123_456_789, u32::MAX] {
+            let r = Ref::new(bounds, index);
+            assert_eq!(r.index(), index);
+            assert_eq!(
+                Vec3::from(r.center()),
+                Aabb::new(bounds.lo.into(), bounds.hi.into()).center()
+            );
+        }
+        assert_eq!(Ref::new(Box3::EMPTY, 5).center(), Vec3A::ZERO);
+    }
 
     #[test]
     fn one_axis_bins_as_all_three_do() {
