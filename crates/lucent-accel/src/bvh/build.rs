@@ -288,6 +288,11 @@ impl Builder {
         if w.depth >= self.options.max_sah_depth {
             return Some(self.median_split(w.start, w.end, extent.max_position()));
         }
+        // Every split costs at least the traversal: when that is no cheaper than the leaf, no
+        // split can win, and the bins need not be filled (most nodes near the leaves).
+        if !too_big && self.options.traversal_cost >= self.blocks(count as u32) {
+            return None;
+        }
         match self.best_split(w) {
             Some(split) if split.cost < self.blocks(count as u32) || too_big => {
                 let (mid, lc, rc) =
