@@ -166,20 +166,34 @@ struct Split {
 /// A split position with the two halves' boxes.
 type Halves = (usize, (Box3, Box3), (Box3, Box3));
 
-struct Builder {
-    refs: Vec<Ref>,
+/// One task of the build: a range of the primitives (from slot `base`) and the nodes of its
+/// subtree, the subtree's root first.
+struct Builder<'a> {
+    refs: &'a mut [Ref],
+    base: usize,
     nodes: Vec<Node>,
     options: BuildOptions,
 }
 
+/// Nodes with at least this many primitives build their two subtrees in parallel. Smaller
+/// ones are not worth a task; larger values leave a core idle near the top of the tree.
+const PARALLEL_MIN: usize = 8192;
+
 impl Bvh {
-    /// Builds over `boxes` (primitive `i` has box `boxes[i]`).
+    /// Builds over `boxes` (primitive `i` has box `boxes[i]`), in parallel on rayon's threads;
+    /// the tree is the same on any number of threads, and the same as a serial build's.
     pub fn build(boxes: &[Aabb], options: &BuildOptions) -> Self {
+        Self::build_forking(boxes, options, PARALLEL_MIN)
+    }
+
+    /// [`Bvh::build`], forking subtrees of at least `parallel_min` primitives.
+    fn build_forking(boxes: &[Aabb], options: &BuildOptions, parallel_min: usize) -> Self {
+        use rayon::prelude::*;
         if boxes.is_empty() {
             return Self::default();
         }
-        let refs = boxes
-            .iter()
+        let mut refs: Vec<Ref> = boxes
+            .par_iter()
             .enumerate()
             .map(|(i, b)| {
                 // A NaN box belongs to a primitive no ray can hit: it must not spoil the unions.
@@ -195,29 +209,122 @@ impl Bvh {
             bins: options.bins.clamp(2, MAX_BINS),
             ..*options
         };
-        let mut b = Builder {
-            refs,
-            nodes: Vec::with_capacity(2 * boxes.len() / options.max_leaf_size.max(1) + 1),
-            options,
-        };
-        let (bounds, centroids) = b.range_bounds(0, boxes.len());
-        b.nodes.push(empty_node());
-        // Iterative, so that deep trees cannot overflow the call stack.
-        let mut work = vec![Work {
+        let (bounds, centroids) = refs
+            .par_chunks(parallel_min.max(1))
+            .map(range_bounds)
+            .reduce(
+                || (Box3::EMPTY, Box3::EMPTY),
+                |a, b| (a.0.union(b.0), a.1.union(b.1)),
+            );
+        let root = Work {
             node: 0,
             start: 0,
             end: boxes.len(),
             depth: 0,
             bounds,
             centroids,
-        }];
+        };
+        let nodes = subtree(&mut refs, 0, options, root, parallel_min);
+        let prims = refs.par_iter().map(Ref::index).collect();
+        Self { nodes, prims }
+    }
+}
+
+/// The nodes of the subtree over `refs` (primitive slots from `base`), its root first, laid
+/// out as the serial build lays it out: the root, its two children, the left child's
+/// descendants, then the right's.
+fn subtree(
+    refs: &mut [Ref],
+    base: usize,
+    options: BuildOptions,
+    root: Work,
+    parallel_min: usize,
+) -> Vec<Node> {
+    let count = root.end - root.start;
+    let serial = count < parallel_min;
+    let capacity = if serial {
+        2 * count / options.max_leaf_size.max(1) + 1
+    } else {
+        1
+    };
+    let mut b = Builder {
+        refs,
+        base,
+        nodes: Vec::with_capacity(capacity),
+        options,
+    };
+    b.nodes.push(empty_node());
+    if serial {
+        b.build_serially(root);
+        return b.nodes;
+    }
+    let Some((mid, left, right)) = b.split_node(&root) else {
+        return b.nodes;
+    };
+    let Builder {
+        refs, mut nodes, ..
+    } = b;
+    let (l, r) = refs.split_at_mut(mid);
+    let child = |refs: &[Ref], (bounds, centroids): (Box3, Box3)| Work {
+        node: 0,
+        start: 0,
+        end: refs.len(),
+        depth: root.depth + 1,
+        bounds,
+        centroids,
+    };
+    let (lw, rw) = (child(l, left), child(r, right));
+    let (ln, rn) = rayon::join(
+        || subtree(l, base, options, lw, parallel_min),
+        || subtree(r, base + mid, options, rw, parallel_min),
+    );
+    // A child's node `i > 0` lands at `descendants + i - 1`.
+    let (l_desc, r_desc) = (3, 3 + ln.len() - 1);
+    let moved = |n: &Node, descendants: usize| match n.count {
+        0 => Node {
+            first: n.first + descendants as u32 - 1,
+            ..*n
+        },
+        _ => *n,
+    };
+    nodes[0].first = 1;
+    nodes[0].count = 0;
+    nodes.reserve(ln.len() + rn.len());
+    nodes.push(moved(&ln[0], l_desc));
+    nodes.push(moved(&rn[0], r_desc));
+    nodes.extend(ln[1..].iter().map(|n| moved(n, l_desc)));
+    nodes.extend(rn[1..].iter().map(|n| moved(n, r_desc)));
+    nodes
+}
+
+/// The box of the boxes, and of the centroids, of `refs`.
+fn range_bounds(refs: &[Ref]) -> (Box3, Box3) {
+    refs.iter().fold((Box3::EMPTY, Box3::EMPTY), |(b, c), r| {
+        (b.union(r.bounds()), c.grow(r.center()))
+    })
+}
+
+fn empty_node() -> Node {
+    Node {
+        min: [0.0; 3],
+        first: 0,
+        max: [0.0; 3],
+        count: 0,
+    }
+}
+
+impl Builder<'_> {
+    /// Builds the subtree of `root` (node 0) in this task. Iterative, so that deep trees cannot
+    /// overflow the call stack.
+    fn build_serially(&mut self, root: Work) {
+        let mut work = vec![root];
         while let Some(w) = work.pop() {
-            if let Some((mid, left, right)) = b.split_node(&w) {
-                let first = b.nodes.len();
-                b.nodes.push(empty_node());
-                b.nodes.push(empty_node());
-                b.nodes[w.node].first = first as u32;
-                b.nodes[w.node].count = 0;
+            if let Some((mid, left, right)) = self.split_node(&w) {
+                let first = self.nodes.len();
+                self.nodes.push(empty_node());
+                self.nodes.push(empty_node());
+                self.nodes[w.node].first = first as u32;
+                self.nodes[w.node].count = 0;
                 let depth = w.depth + 1;
                 work.push(Work {
                     node: first + 1,
@@ -237,31 +344,11 @@ impl Bvh {
                 });
             }
         }
-        let prims = b.refs.iter().map(Ref::index).collect();
-        Self {
-            nodes: b.nodes,
-            prims,
-        }
     }
-}
 
-fn empty_node() -> Node {
-    Node {
-        min: [0.0; 3],
-        first: 0,
-        max: [0.0; 3],
-        count: 0,
-    }
-}
-
-impl Builder {
     /// The box of the boxes, and of the centroids, of `refs[start..end]`.
     fn range_bounds(&self, start: usize, end: usize) -> (Box3, Box3) {
-        self.refs[start..end]
-            .iter()
-            .fold((Box3::EMPTY, Box3::EMPTY), |(b, c), r| {
-                (b.union(r.bounds()), c.grow(r.center()))
-            })
+        range_bounds(&self.refs[start..end])
     }
 
     /// Sets the node's box; makes it a leaf and returns `None`, or partitions its primitives and
@@ -271,7 +358,7 @@ impl Builder {
         let n = &mut self.nodes[w.node];
         n.min = bounds.min.to_array();
         n.max = bounds.max.to_array();
-        n.first = w.start as u32;
+        n.first = (self.base + w.start) as u32;
         n.count = (w.end - w.start) as u32;
 
         let count = w.end - w.start;
@@ -492,10 +579,58 @@ mod tests {
         assert_eq!(Ref::new(Box3::EMPTY, 5).center(), Vec3A::ZERO);
     }
 
+    /// Boxes of `n` random small triangles in a unit cube, with a cluster of coincident ones.
+    fn random_boxes(n: usize) -> Vec<Aabb> {
+        let mut x = 0x9e37_79b9u32;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x as f32 / u32::MAX as f32
+        };
+        (0..n)
+            .map(|i| {
+                let c = if i % 97 == 0 {
+                    Vec3::splat(0.5)
+                } else {
+                    Vec3::new(next(), next(), next())
+                };
+                let e = Vec3::new(next(), next(), next()) * 0.01;
+                Aabb::new(c - e, c + e)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_parallel_build_lays_out_the_serial_tree_on_any_number_of_threads() {
+        let boxes = random_boxes(20_000);
+        let options = BuildOptions::default();
+        let serial = Bvh::build_forking(&boxes, &options, usize::MAX);
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for parallel_min in [64, 1000, PARALLEL_MIN] {
+                let forked = pool.install(|| Bvh::build_forking(&boxes, &options, parallel_min));
+                assert_eq!(
+                    forked.nodes, serial.nodes,
+                    "{threads} threads, {parallel_min}"
+                );
+                assert_eq!(
+                    forked.prims, serial.prims,
+                    "{threads} threads, {parallel_min}"
+                );
+            }
+        }
+        assert!(serial.nodes.len() > 1000);
+    }
+
     #[test]
     fn one_axis_bins_as_all_three_do() {
         let b = Builder {
-            refs: Vec::new(),
+            refs: &mut [],
+            base: 0,
             nodes: Vec::new(),
             options: BuildOptions::default(),
         };

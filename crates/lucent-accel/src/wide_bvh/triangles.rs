@@ -35,6 +35,23 @@ pub struct WideTriangleBvh {
 /// 12 and 16; the SAH counts a leaf's cost in packs, so it stops splitting at one pack.)
 const LEAF_SIZE: usize = 8;
 
+/// The pack of triangles `ids` (at most [`LANES`]), whose corners `vertices` gives.
+fn pack(ids: &[u32], vertices: impl Fn(u32) -> [Vec3; 3]) -> Pack {
+    let mut pack = Pack {
+        v: [[Lanes::splat(f32::NAN); 3]; 3],
+        ids: [u32::MAX; LANES],
+    };
+    for (lane, &t) in ids.iter().enumerate() {
+        pack.ids[lane] = t;
+        for (k, p) in vertices(t).iter().enumerate() {
+            for axis in 0..3 {
+                pack.v[k][axis].0[lane] = p[axis];
+            }
+        }
+    }
+    pack
+}
+
 impl WideTriangleBvh {
     /// Builds over the triangles `triangles` of `positions` (indices must be in range).
     pub fn new(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
@@ -47,45 +64,51 @@ impl WideTriangleBvh {
         triangles: &[[u32; 3]],
         options: &crate::bvh::BuildOptions,
     ) -> Self {
+        use rayon::prelude::*;
         let vertices = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
         let boxes: Vec<Aabb> = (0..triangles.len() as u32)
+            .into_par_iter()
             .map(|t| Aabb::from_points(vertices(t)))
             .collect();
         let mut bvh = WideBvh::from_binary(&Bvh::build(&boxes, options));
-        let mut packs = Vec::with_capacity(triangles.len().div_ceil(LANES));
-        // Re-point every leaf from primitive slots to packs of its triangles.
-        let mut repack = |first: u32, count: u32| -> (u32, u32) {
-            let start = packs.len() as u32;
-            for chunk in bvh.prims[first as usize..(first + count) as usize].chunks(LANES) {
-                let mut pack = Pack {
-                    v: [[Lanes::splat(f32::NAN); 3]; 3],
-                    ids: [u32::MAX; LANES],
-                };
-                for (lane, &t) in chunk.iter().enumerate() {
-                    pack.ids[lane] = t;
-                    for (k, p) in vertices(t).iter().enumerate() {
-                        for axis in 0..3 {
-                            pack.v[k][axis].0[lane] = p[axis];
-                        }
-                    }
-                }
-                packs.push(pack);
-            }
-            (start, packs.len() as u32 - start)
-        };
-        if let Some((first, count)) = bvh.root_leaf {
-            bvh.root_leaf = Some(repack(first, count));
-        }
-        for n in 0..bvh.nodes.len() {
+        // Every leaf's primitive slots, in the order their packs are laid out: the root leaf,
+        // then node by node, child by child.
+        let mut leaves: Vec<(u32, u32)> = bvh.root_leaf.into_iter().collect();
+        for node in &bvh.nodes {
             for k in 0..WIDTH {
-                let count = bvh.nodes[n].count[k];
-                if count != 0 && count != EMPTY {
-                    let (first, packs) = repack(bvh.nodes[n].child[k], count);
-                    bvh.nodes[n].child[k] = first;
-                    bvh.nodes[n].count[k] = packs;
+                if node.count[k] != 0 && node.count[k] != EMPTY {
+                    leaves.push((node.child[k], node.count[k]));
                 }
             }
         }
+        let prims = &bvh.prims;
+        let packs: Vec<Pack> = leaves
+            .par_iter()
+            .flat_map_iter(|&(first, count)| {
+                prims[first as usize..(first + count) as usize]
+                    .chunks(LANES)
+                    .map(|chunk| pack(chunk, vertices))
+            })
+            .collect();
+        // Re-point every leaf from primitive slots to its packs.
+        let mut next = 0;
+        let mut repack = |count: u32| {
+            let first = next;
+            next += count.div_ceil(LANES as u32);
+            (first, next - first)
+        };
+        if let Some((_, count)) = bvh.root_leaf {
+            bvh.root_leaf = Some(repack(count));
+        }
+        for node in &mut bvh.nodes {
+            for k in 0..WIDTH {
+                let count = node.count[k];
+                if count != 0 && count != EMPTY {
+                    (node.child[k], node.count[k]) = repack(count);
+                }
+            }
+        }
+        debug_assert_eq!(next as usize, packs.len());
         bvh.prims = Vec::new();
         Self { bvh, packs }
     }
