@@ -183,21 +183,35 @@ impl Bvh {
     /// Builds over `boxes` (primitive `i` has box `boxes[i]`), in parallel on rayon's threads;
     /// the tree is the same on any number of threads, and the same as a serial build's.
     pub fn build(boxes: &[Aabb], options: &BuildOptions) -> Self {
-        Self::build_forking(boxes, options, PARALLEL_MIN)
+        Self::build_from(boxes.len(), |i| boxes[i], options)
     }
 
-    /// [`Bvh::build`], forking subtrees of at least `parallel_min` primitives.
-    fn build_forking(boxes: &[Aabb], options: &BuildOptions, parallel_min: usize) -> Self {
+    /// [`Bvh::build`] over `count` primitives whose boxes `box_of` gives (no list of boxes
+    /// is made: on a large mesh, first touches of fresh memory were a fifth of the build).
+    pub fn build_from(
+        count: usize,
+        box_of: impl Fn(usize) -> Aabb + Sync,
+        options: &BuildOptions,
+    ) -> Self {
+        Self::build_forking(count, box_of, options, PARALLEL_MIN)
+    }
+
+    /// [`Bvh::build_from`], forking subtrees of at least `parallel_min` primitives.
+    fn build_forking(
+        count: usize,
+        box_of: impl Fn(usize) -> Aabb + Sync,
+        options: &BuildOptions,
+        parallel_min: usize,
+    ) -> Self {
         use rayon::prelude::*;
-        if boxes.is_empty() {
+        if count == 0 {
             return Self::default();
         }
-        let mut refs: Vec<Ref> = boxes
-            .par_iter()
-            .enumerate()
-            .map(|(i, b)| {
+        let mut refs: Vec<Ref> = (0..count)
+            .into_par_iter()
+            .map(|i| {
                 // A NaN box belongs to a primitive no ray can hit: it must not spoil the unions.
-                let b = b.or_empty_if_nan();
+                let b = box_of(i).or_empty_if_nan();
                 let bounds = Box3 {
                     lo: b.min.into(),
                     hi: b.max.into(),
@@ -219,27 +233,86 @@ impl Bvh {
         let root = Work {
             node: 0,
             start: 0,
-            end: boxes.len(),
+            end: count,
             depth: 0,
             bounds,
             centroids,
         };
-        let nodes = subtree(&mut refs, 0, options, root, parallel_min);
+        let nodes = match subtree(&mut refs, 0, options, root, parallel_min) {
+            Piece::Nodes(nodes) => nodes,
+            fork => {
+                let mut nodes = vec![empty_node(); fork.len()];
+                fork.lay_out(&mut nodes, 0, 1);
+                nodes
+            }
+        };
         let prims = refs.par_iter().map(Ref::index).collect();
         Self { nodes, prims }
     }
 }
 
-/// The nodes of the subtree over `refs` (primitive slots from `base`), its root first, laid
-/// out as the serial build lays it out: the root, its two children, the left child's
-/// descendants, then the right's.
+/// A subtree as the build's tasks left it: the nodes one task built, its root first; or a
+/// node whose halves were built by two tasks.
+enum Piece {
+    Nodes(Vec<Node>),
+    Fork {
+        root: Node,
+        len: usize,
+        halves: Box<(Piece, Piece)>,
+    },
+}
+
+impl Piece {
+    fn len(&self) -> usize {
+        match self {
+            Piece::Nodes(nodes) => nodes.len(),
+            Piece::Fork { len, .. } => *len,
+        }
+    }
+
+    /// Writes the subtree as the serial build lays it out (a node's two children side by
+    /// side, the left child's descendants, then the right's), its root at `out[at]` and its
+    /// descendants from `out[descendants]`: every node is copied once, into one allocation.
+    fn lay_out(&self, out: &mut [Node], at: usize, descendants: usize) {
+        match self {
+            Piece::Nodes(nodes) => {
+                // Node `i > 0` lands at `descendants + i - 1`.
+                let moved = |n: &Node| match n.count {
+                    0 => Node {
+                        first: n.first + descendants as u32 - 1,
+                        ..*n
+                    },
+                    _ => *n,
+                };
+                out[at] = moved(&nodes[0]);
+                for (o, n) in out[descendants..].iter_mut().zip(&nodes[1..]) {
+                    *o = moved(n);
+                }
+            }
+            Piece::Fork { root, halves, .. } => {
+                out[at] = Node {
+                    first: descendants as u32,
+                    count: 0,
+                    ..*root
+                };
+                let (left, right) = &**halves;
+                let below = descendants + 2;
+                left.lay_out(out, descendants, below);
+                right.lay_out(out, descendants + 1, below + left.len() - 1);
+            }
+        }
+    }
+}
+
+/// The subtree over `refs` (primitive slots from `base`), forking its halves into two tasks
+/// while they hold at least `parallel_min` primitives.
 fn subtree(
     refs: &mut [Ref],
     base: usize,
     options: BuildOptions,
     root: Work,
     parallel_min: usize,
-) -> Vec<Node> {
+) -> Piece {
     let count = root.end - root.start;
     let serial = count < parallel_min;
     let capacity = if serial {
@@ -256,14 +329,12 @@ fn subtree(
     b.nodes.push(empty_node());
     if serial {
         b.build_serially(root);
-        return b.nodes;
+        return Piece::Nodes(b.nodes);
     }
     let Some((mid, left, right)) = b.split_node(&root) else {
-        return b.nodes;
+        return Piece::Nodes(b.nodes);
     };
-    let Builder {
-        refs, mut nodes, ..
-    } = b;
+    let Builder { refs, nodes, .. } = b;
     let (l, r) = refs.split_at_mut(mid);
     let child = |refs: &[Ref], (bounds, centroids): (Box3, Box3)| Work {
         node: 0,
@@ -274,27 +345,15 @@ fn subtree(
         centroids,
     };
     let (lw, rw) = (child(l, left), child(r, right));
-    let (ln, rn) = rayon::join(
+    let halves = rayon::join(
         || subtree(l, base, options, lw, parallel_min),
         || subtree(r, base + mid, options, rw, parallel_min),
     );
-    // A child's node `i > 0` lands at `descendants + i - 1`.
-    let (l_desc, r_desc) = (3, 3 + ln.len() - 1);
-    let moved = |n: &Node, descendants: usize| match n.count {
-        0 => Node {
-            first: n.first + descendants as u32 - 1,
-            ..*n
-        },
-        _ => *n,
-    };
-    nodes[0].first = 1;
-    nodes[0].count = 0;
-    nodes.reserve(ln.len() + rn.len());
-    nodes.push(moved(&ln[0], l_desc));
-    nodes.push(moved(&rn[0], r_desc));
-    nodes.extend(ln[1..].iter().map(|n| moved(n, l_desc)));
-    nodes.extend(rn[1..].iter().map(|n| moved(n, r_desc)));
-    nodes
+    Piece::Fork {
+        root: nodes[0],
+        len: 1 + halves.0.len() + halves.1.len(),
+        halves: Box::new(halves),
+    }
 }
 
 /// The box of the boxes, and of the centroids, of `refs`.
@@ -605,14 +664,16 @@ mod tests {
     fn a_parallel_build_lays_out_the_serial_tree_on_any_number_of_threads() {
         let boxes = random_boxes(20_000);
         let options = BuildOptions::default();
-        let serial = Bvh::build_forking(&boxes, &options, usize::MAX);
+        let serial = Bvh::build_forking(boxes.len(), |i| boxes[i], &options, usize::MAX);
         for threads in [1, 2, 3] {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
             for parallel_min in [64, 1000, PARALLEL_MIN] {
-                let forked = pool.install(|| Bvh::build_forking(&boxes, &options, parallel_min));
+                let forked = pool.install(|| {
+                    Bvh::build_forking(boxes.len(), |i| boxes[i], &options, parallel_min)
+                });
                 assert_eq!(
                     forked.nodes, serial.nodes,
                     "{threads} threads, {parallel_min}"

@@ -66,11 +66,8 @@ impl WideTriangleBvh {
     ) -> Self {
         use rayon::prelude::*;
         let vertices = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
-        let boxes: Vec<Aabb> = (0..triangles.len() as u32)
-            .into_par_iter()
-            .map(|t| Aabb::from_points(vertices(t)))
-            .collect();
-        let mut bvh = WideBvh::from_binary(&Bvh::build(&boxes, options));
+        let box_of = |t: usize| Aabb::from_points(vertices(t as u32));
+        let mut bvh = WideBvh::from_binary(&Bvh::build_from(triangles.len(), box_of, options));
         // Every leaf's primitive slots, in the order their packs are laid out: the root leaf,
         // then node by node, child by child.
         let mut leaves: Vec<(u32, u32)> = bvh.root_leaf.into_iter().collect();
@@ -81,15 +78,23 @@ impl WideTriangleBvh {
                 }
             }
         }
-        let prims = &bvh.prims;
-        let packs: Vec<Pack> = leaves
-            .par_iter()
-            .flat_map_iter(|&(first, count)| {
-                prims[first as usize..(first + count) as usize]
-                    .chunks(LANES)
-                    .map(|chunk| pack(chunk, vertices))
+        // Each pack's primitive slots, so that the packs are filled in parallel straight
+        // into their place.
+        let slots: Vec<std::ops::Range<usize>> = leaves
+            .iter()
+            .flat_map(|&(first, count)| {
+                let (first, end) = (first as usize, (first + count) as usize);
+                (first..end)
+                    .step_by(LANES)
+                    .map(move |s| s..end.min(s + LANES))
             })
             .collect();
+        let prims = &bvh.prims;
+        let mut packs = Vec::new();
+        slots
+            .par_iter()
+            .map(|s| pack(&prims[s.clone()], vertices))
+            .collect_into_vec(&mut packs);
         // Re-point every leaf from primitive slots to its packs.
         let mut next = 0;
         let mut repack = |count: u32| {
