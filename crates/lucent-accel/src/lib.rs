@@ -22,6 +22,7 @@ pub mod brute_force;
 pub mod bvh;
 pub mod frustum;
 mod mailbox;
+pub mod memory;
 pub mod octree;
 pub mod ray;
 pub mod triangle;

@@ -7,7 +7,6 @@
 
 use anyhow::{Context, anyhow, bail};
 use lucent::film::Film;
-use lucent::film::tonemap::srgb8;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -172,7 +171,6 @@ pub fn write_density_map(
 /// Writes `film` to `path` as `format`, atomically.
 pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
     let (w, h) = (film.width(), film.height());
-    let pixels = film.to_linear_rgb();
     let samples = samples_text(film);
     write_atomically(path, |out| match format {
         ImageFormat::Png => {
@@ -184,13 +182,13 @@ pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Res
             encoder.set_compression(png::Compression::Fast);
             encoder.add_text_chunk("lucent.samples".into(), samples.clone())?;
             let mut writer = encoder.write_header()?;
-            let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.map(srgb8)).collect();
-            writer.write_image_data(&bytes)?;
+            writer.write_image_data(&film.to_srgb8())?;
             writer.finish()?;
             Ok(())
         }
         ImageFormat::Exr => {
             use exr::prelude::*;
+            let pixels = film.to_linear_rgb();
             let channel = |name: &str, c: usize| {
                 AnyChannel::new(
                     name,
@@ -218,7 +216,7 @@ pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Res
                 .to_buffered(&mut *out)
                 .map_err(|e| anyhow!("{e}"))
         }
-        ImageFormat::Pfm => Ok(write_pfm(out, w, h, &pixels)?),
+        ImageFormat::Pfm => Ok(write_pfm(out, w, h, &film.to_linear_rgb())?),
     })
 }
 

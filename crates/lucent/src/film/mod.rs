@@ -11,6 +11,7 @@ pub mod splat;
 pub mod tonemap;
 
 use crate::Rgb;
+use lucent_accel::memory::filled_vec;
 
 /// Linear radiance sums, weights and sample counts for a `width × height` image, row 0 at the
 /// top.
@@ -18,7 +19,7 @@ use crate::Rgb;
 pub struct Film {
     width: u32,
     height: u32,
-    sums: Vec<Rgb>,
+    sums: Vec<[f32; 3]>,
     weights: Vec<f32>,
     samples: Vec<u32>,
 }
@@ -45,9 +46,9 @@ impl Film {
         Self {
             width,
             height,
-            sums: vec![Rgb::BLACK; n],
-            weights: vec![0.0; n],
-            samples: vec![0; n],
+            sums: filled_vec(n, [0.0; 3]),
+            weights: filled_vec(n, 0.0),
+            samples: filled_vec(n, 0),
         }
     }
 
@@ -57,11 +58,10 @@ impl Film {
         if data.sums.len() != n || data.weights.len() != n || data.samples.len() != n {
             return None;
         }
-        let sums = data.sums.into_iter().map(Rgb::from).collect();
         Some(Self {
             width: data.width,
             height: data.height,
-            sums,
+            sums: data.sums,
             weights: data.weights,
             samples: data.samples,
         })
@@ -72,7 +72,7 @@ impl Film {
         FilmData {
             width: self.width,
             height: self.height,
-            sums: self.sums.iter().map(|s| s.to_array()).collect(),
+            sums: self.sums.clone(),
             weights: self.weights.clone(),
             samples: self.samples.clone(),
         }
@@ -97,7 +97,7 @@ impl Film {
     pub fn add_sample(&mut self, x: u32, y: u32, value: Option<Rgb>, weight: f32) {
         let i = self.index(x, y);
         if let Some(v) = value {
-            self.sums[i] += v * weight;
+            add_to(&mut self.sums[i], v * weight);
             self.weights[i] += weight;
         }
         self.samples[i] += 1;
@@ -107,7 +107,7 @@ impl Film {
     /// sample's share in a pixel its filter reaches ([`splat`]).
     pub fn add_splat(&mut self, x: u32, y: u32, value: Rgb, weight: f32) {
         let i = self.index(x, y);
-        self.sums[i] += value * weight;
+        add_to(&mut self.sums[i], value * weight);
         self.weights[i] += weight;
     }
 
@@ -129,7 +129,7 @@ impl Film {
             return;
         }
         let i = self.index(x as u32, y as u32);
-        self.sums[i] += sum;
+        add_to(&mut self.sums[i], sum);
         self.weights[i] += weight;
         self.samples[i] += samples;
     }
@@ -152,7 +152,7 @@ impl Film {
         if w > 0.0 {
             // The last guard: finite samples near f32::MAX can still sum past it, and an image
             // never holds NaN or ∞ (see `overflowed_pixels`).
-            (self.sums[i] / w).map(|c| {
+            (Rgb::from(self.sums[i]) / w).map(|c| {
                 if c.is_nan() {
                     0.0
                 } else {
@@ -167,10 +167,11 @@ impl Film {
     /// Pixels whose sums overflowed single precision (NaN or ∞): [`Film::pixel`] gives them
     /// clamped to ±`f32::MAX` (NaN as 0). Only inputs near `f32::MAX` do this.
     pub fn overflowed_pixels(&self) -> usize {
+        use rayon::prelude::*;
         self.sums
-            .iter()
+            .par_iter()
             .zip(&self.weights)
-            .filter(|(s, w)| !(s.is_finite() && w.is_finite()))
+            .filter(|(s, w)| !(s.iter().all(|c| c.is_finite()) && w.is_finite()))
             .count()
     }
 
@@ -181,10 +182,33 @@ impl Film {
 
     /// Every pixel's estimate, row by row from the top, as linear RGB triples.
     pub fn to_linear_rgb(&self) -> Vec<[f32; 3]> {
-        (0..self.height)
-            .flat_map(|y| (0..self.width).map(move |x| (x, y)))
-            .map(|(x, y)| self.pixel(x, y).to_array())
+        use rayon::prelude::*;
+        let width = self.width as usize;
+        (0..self.sums.len())
+            .into_par_iter()
+            .map(|i| {
+                self.pixel((i % width) as u32, (i / width) as u32)
+                    .to_array()
+            })
             .collect()
+    }
+
+    /// The image in 8-bit sRGB (r, g, b bytes), row by row from the top: [`Film::to_linear_rgb`]
+    /// encoded by [`tonemap::srgb8`], made in parallel without the linear image.
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        use rayon::prelude::*;
+        let width = self.width as usize;
+        let mut bytes = filled_vec(3 * self.sums.len(), 0);
+        bytes
+            .par_chunks_mut(3 * width.max(1))
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, out) in row.chunks_exact_mut(3).enumerate() {
+                    let p = self.pixel(x as u32, y as u32).to_array();
+                    out.copy_from_slice(&p.map(tonemap::srgb8));
+                }
+            });
+        bytes
     }
 
     /// A copy of the region `[x0, x0 + w) × [y0, y0 + h)`.
@@ -198,12 +222,11 @@ impl Film {
         );
         let mut part = Film::new(w, h);
         for y in 0..h {
-            for x in 0..w {
-                let (src, dst) = (self.index(x0 + x, y0 + y), part.index(x, y));
-                part.sums[dst] = self.sums[src];
-                part.weights[dst] = self.weights[src];
-                part.samples[dst] = self.samples[src];
-            }
+            let (src, dst) = (self.index(x0, y0 + y), part.index(0, y));
+            let (src, dst) = (src..src + w as usize, dst..dst + w as usize);
+            part.sums[dst.clone()].copy_from_slice(&self.sums[src.clone()]);
+            part.weights[dst.clone()].copy_from_slice(&self.weights[src.clone()]);
+            part.samples[dst].copy_from_slice(&self.samples[src]);
         }
         part
     }
@@ -217,13 +240,13 @@ impl Film {
             x0 + part.width <= self.width && y0 + part.height <= self.height,
             "region outside the film"
         );
+        let w = part.width as usize;
         for y in 0..part.height {
-            for x in 0..part.width {
-                let (src, dst) = (part.index(x, y), self.index(x0 + x, y0 + y));
-                self.sums[dst] = part.sums[src];
-                self.weights[dst] = part.weights[src];
-                self.samples[dst] = part.samples[src];
-            }
+            let (src, dst) = (part.index(0, y), self.index(x0, y0 + y));
+            let (src, dst) = (src..src + w, dst..dst + w);
+            self.sums[dst.clone()].copy_from_slice(&part.sums[src.clone()]);
+            self.weights[dst.clone()].copy_from_slice(&part.weights[src.clone()]);
+            self.samples[dst].copy_from_slice(&part.samples[src]);
         }
     }
 
@@ -238,7 +261,7 @@ impl Film {
             "film sizes differ"
         );
         for (a, b) in self.sums.iter_mut().zip(&other.sums) {
-            *a += *b;
+            add_to(a, Rgb::from(*b));
         }
         for (a, b) in self.weights.iter_mut().zip(&other.weights) {
             *a += *b;
@@ -249,9 +272,35 @@ impl Film {
     }
 }
 
+/// `sum += v`, channel by channel.
+#[inline]
+fn add_to(sum: &mut [f32; 3], v: Rgb) {
+    *sum = (Rgb::from(*sum) + v).to_array();
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_srgb_bytes_encode_the_linear_image() {
+        let mut film = Film::new(7, 5);
+        for y in 0..5 {
+            for x in 0..7 {
+                let v = Rgb::new(x as f32 / 6.0, y as f32 / 4.0, 0.3 * (x + y) as f32);
+                film.add_sample(x, y, Some(v), 0.5 + x as f32);
+            }
+        }
+        film.add_sample(3, 2, Some(Rgb::new(f32::MAX, 1.0, 2.0)), f32::MAX);
+        let bytes = film.to_srgb8();
+        let expected: Vec<u8> = film
+            .to_linear_rgb()
+            .iter()
+            .flat_map(|p| p.map(tonemap::srgb8))
+            .collect();
+        assert_eq!(bytes, expected);
+        assert_eq!(bytes.len(), 7 * 5 * 3);
+    }
 
     #[test]
     fn sums_past_single_precision_give_finite_pixels_and_are_counted() {
