@@ -13,7 +13,9 @@
 //!   to skip what lies beyond;
 //! - any hit: the leaf test returns `true` to stop the traversal (the ray is blocked).
 //!
-//! [`brute_force`] is the oracle every other structure is held to.
+//! [`brute_force`] is the oracle every other structure is held to. Builds run on rayon's threads
+//! and give the same structure on any number of them. [`memory`] holds the one helper the
+//! renderer shares for its large buffers (huge pages, so that their first touches are cheap).
 
 pub mod aabb;
 pub mod accelerator;
