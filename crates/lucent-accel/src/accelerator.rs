@@ -54,7 +54,7 @@ pub enum AccelKind {
     Octree,
     /// A binary SAH bounding volume hierarchy.
     Bvh,
-    /// A 4-wide BVH with SIMD box tests, and SIMD triangle leaves for meshes: the fastest.
+    /// An eight-wide BVH with SIMD box tests, and SIMD triangle leaves for meshes: the fastest.
     #[default]
     Wide,
 }
