@@ -17,9 +17,9 @@ pub fn filled_vec<T: Clone>(n: usize, value: T) -> Vec<T> {
     v
 }
 
-/// Advises the kernel to back `v`'s allocated capacity (written or not) with huge pages: call
-/// it before the capacity is first written, for example on `Vec::with_capacity`'s result.
-pub fn advise_huge_pages<T>(v: &Vec<T>) {
+/// Advises the kernel to back `v`'s allocated capacity (written or not) with huge pages: called
+/// before the capacity is first written.
+fn advise_huge_pages<T>(v: &Vec<T>) {
     let bytes = v.capacity() * size_of::<T>();
     if bytes < WORTH_ADVISING {
         return;

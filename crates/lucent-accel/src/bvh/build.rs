@@ -638,15 +638,20 @@ mod tests {
         assert_eq!(Ref::new(Box3::EMPTY, 5).center(), Vec3A::ZERO);
     }
 
-    /// Boxes of `n` random small triangles in a unit cube, with a cluster of coincident ones.
-    fn random_boxes(n: usize) -> Vec<Aabb> {
-        let mut x = 0x9e37_79b9u32;
-        let mut next = move || {
+    /// Uniform values in `[0, 1]` from an xorshift generator seeded with `seed`.
+    fn uniforms(seed: u32) -> impl FnMut() -> f32 {
+        let mut x = seed;
+        move || {
             x ^= x << 13;
             x ^= x >> 17;
             x ^= x << 5;
             x as f32 / u32::MAX as f32
-        };
+        }
+    }
+
+    /// Boxes of `n` random small triangles in a unit cube, with a cluster of coincident ones.
+    fn random_boxes(n: usize) -> Vec<Aabb> {
+        let mut next = uniforms(0x9e37_79b9);
         (0..n)
             .map(|i| {
                 let c = if i % 97 == 0 {
@@ -714,13 +719,8 @@ mod tests {
             f32::NEG_INFINITY,
             f32::NAN,
         ];
-        let mut x = 0x2545_f491u32;
-        let random = (0..10_000).map(|_| {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x as f32 / u32::MAX as f32) * 40.0 - 10.0
-        });
+        let mut next = uniforms(0x2545_f491);
+        let random = (0..10_000).map(|_| next() * 40.0 - 10.0);
         for c in specials.into_iter().chain(random) {
             for (lo, scale) in [(0.0, 1.0), (-2.5, 3.2), (1.0, 0.0), (0.0, 1e30)] {
                 let all = b.bins_of(Vec3A::splat(c), Vec3A::splat(lo), Vec3A::splat(scale));

@@ -68,52 +68,33 @@ impl WideTriangleBvh {
         let vertices = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
         let box_of = |t: usize| Aabb::from_points(vertices(t as u32));
         let mut bvh = WideBvh::from_binary(&Bvh::build_from(triangles.len(), box_of, options));
-        // Every leaf's primitive slots, in the order their packs are laid out: the root leaf,
-        // then node by node, child by child.
-        let mut leaves: Vec<(u32, u32)> = bvh.root_leaf.into_iter().collect();
-        for node in &bvh.nodes {
+        // Re-point every leaf from primitive slots to packs (the root leaf, then node by node,
+        // child by child), noting each pack's slots; the packs are then filled in parallel
+        // straight into their place.
+        let mut slots: Vec<std::ops::Range<usize>> = Vec::new();
+        let mut repack = |first: u32, count: u32| -> (u32, u32) {
+            let start = slots.len() as u32;
+            let (first, end) = (first as usize, (first + count) as usize);
+            slots.extend((first..end).step_by(LANES).map(|s| s..end.min(s + LANES)));
+            (start, slots.len() as u32 - start)
+        };
+        if let Some((first, count)) = bvh.root_leaf {
+            bvh.root_leaf = Some(repack(first, count));
+        }
+        for node in &mut bvh.nodes {
             for k in 0..WIDTH {
-                if node.count[k] != 0 && node.count[k] != EMPTY {
-                    leaves.push((node.child[k], node.count[k]));
+                let count = node.count[k];
+                if count != 0 && count != EMPTY {
+                    (node.child[k], node.count[k]) = repack(node.child[k], count);
                 }
             }
         }
-        // Each pack's primitive slots, so that the packs are filled in parallel straight
-        // into their place.
-        let slots: Vec<std::ops::Range<usize>> = leaves
-            .iter()
-            .flat_map(|&(first, count)| {
-                let (first, end) = (first as usize, (first + count) as usize);
-                (first..end)
-                    .step_by(LANES)
-                    .map(move |s| s..end.min(s + LANES))
-            })
-            .collect();
         let prims = &bvh.prims;
         let mut packs = Vec::new();
         slots
             .par_iter()
             .map(|s| pack(&prims[s.clone()], vertices))
             .collect_into_vec(&mut packs);
-        // Re-point every leaf from primitive slots to its packs.
-        let mut next = 0;
-        let mut repack = |count: u32| {
-            let first = next;
-            next += count.div_ceil(LANES as u32);
-            (first, next - first)
-        };
-        if let Some((_, count)) = bvh.root_leaf {
-            bvh.root_leaf = Some(repack(count));
-        }
-        for node in &mut bvh.nodes {
-            for k in 0..WIDTH {
-                let count = node.count[k];
-                if count != 0 && count != EMPTY {
-                    (node.child[k], node.count[k]) = repack(count);
-                }
-            }
-        }
-        debug_assert_eq!(next as usize, packs.len());
         bvh.prims = Vec::new();
         Self { bvh, packs }
     }

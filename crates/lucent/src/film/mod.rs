@@ -221,13 +221,7 @@ impl Film {
             "region outside the film"
         );
         let mut part = Film::new(w, h);
-        for y in 0..h {
-            let (src, dst) = (self.index(x0, y0 + y), part.index(0, y));
-            let (src, dst) = (src..src + w as usize, dst..dst + w as usize);
-            part.sums[dst.clone()].copy_from_slice(&self.sums[src.clone()]);
-            part.weights[dst.clone()].copy_from_slice(&self.weights[src.clone()]);
-            part.samples[dst].copy_from_slice(&self.samples[src]);
-        }
+        part.copy_rect(self, (x0, y0), (0, 0), (w, h));
         part
     }
 
@@ -240,13 +234,23 @@ impl Film {
             x0 + part.width <= self.width && y0 + part.height <= self.height,
             "region outside the film"
         );
-        let w = part.width as usize;
-        for y in 0..part.height {
-            let (src, dst) = (part.index(0, y), self.index(x0, y0 + y));
-            let (src, dst) = (src..src + w, dst..dst + w);
-            self.sums[dst.clone()].copy_from_slice(&part.sums[src.clone()]);
-            self.weights[dst.clone()].copy_from_slice(&part.weights[src.clone()]);
-            self.samples[dst].copy_from_slice(&part.samples[src]);
+        self.copy_rect(part, (0, 0), (x0, y0), (part.width, part.height));
+    }
+
+    /// Copies the `w × h` pixels of `from` at `(fx, fy)` here, to `(tx, ty)`, row by row.
+    fn copy_rect(
+        &mut self,
+        from: &Film,
+        (fx, fy): (u32, u32),
+        (tx, ty): (u32, u32),
+        (w, h): (u32, u32),
+    ) {
+        for y in 0..h {
+            let (src, dst) = (from.index(fx, fy + y), self.index(tx, ty + y));
+            let (src, dst) = (src..src + w as usize, dst..dst + w as usize);
+            self.sums[dst.clone()].copy_from_slice(&from.sums[src.clone()]);
+            self.weights[dst.clone()].copy_from_slice(&from.weights[src.clone()]);
+            self.samples[dst].copy_from_slice(&from.samples[src]);
         }
     }
 
