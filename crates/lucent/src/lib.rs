@@ -20,6 +20,7 @@ pub mod color;
 pub mod film;
 mod first_hits;
 pub mod integrator;
+pub mod lanes;
 pub mod light;
 pub mod material;
 pub mod motion;

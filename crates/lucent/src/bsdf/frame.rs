@@ -2,6 +2,8 @@
 
 use glam::Vec3;
 
+use crate::lanes::{Mask, Real, V3};
+
 /// A right-handed orthonormal basis `(s, t, n)` with `s × t = n`; in local coordinates `n` is
 /// `z`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,15 +24,7 @@ impl Frame {
     /// With `σ = sign(n.z)`, `a = −1/(σ + n.z)` and `b = n.x·n.y·a`:
     /// `s = (1 + σ·n.x²·a, σ·b, −σ·n.x)`, `t = (b, σ + n.y²·a, −n.y)`.
     pub fn from_normal(n: Vec3) -> Self {
-        // copysign keeps −0.0 on the negative branch, so σ + n.z never cancels to 0.
-        let sign = 1f32.copysign(n.z);
-        let a = -1.0 / (sign + n.z);
-        let b = n.x * n.y * a;
-        Self {
-            s: Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-            t: Vec3::new(b, sign + n.y * n.y * a, -n.y),
-            n,
-        }
+        FrameOf::from_normal(n.into()).into()
     }
 
     /// A frame around the unit normal `n` whose first tangent follows `tangent` (a surface's
@@ -38,17 +32,7 @@ impl Frame {
     /// anisotropic roughness and tangent-space normal maps line up with the texture. Falls back
     /// to [`Frame::from_normal`] when `tangent` is (nearly) parallel to `n`, zero or not finite.
     pub fn from_normal_tangent(n: Vec3, tangent: Vec3) -> Self {
-        let s = tangent - n * n.dot(tangent);
-        let len2 = s.length_squared();
-        if !len2.is_finite() || len2 <= 1e-12 * tangent.length_squared() {
-            return Self::from_normal(n);
-        }
-        let s = s / len2.sqrt();
-        Self {
-            s,
-            t: n.cross(s),
-            n,
-        }
+        FrameOf::from_normal_tangent(n.into(), tangent.into()).into()
     }
 
     /// The same frame seen from the other side: `(s, −t, −n)`, still right-handed.
@@ -70,6 +54,78 @@ impl Frame {
     #[inline]
     pub fn to_world(&self, v: Vec3) -> Vec3 {
         self.s * v.x + self.t * v.y + self.n * v.z
+    }
+}
+
+/// [`Frame`] over any [`Real`]: the constructors and changes of coordinates written once, for
+/// one path (`FrameOf<f32>`, which gives `Frame`'s bits) and for lanes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameOf<R> {
+    /// First tangent (local `x`).
+    pub s: V3<R>,
+    /// Second tangent (local `y`).
+    pub t: V3<R>,
+    /// The normal (local `z`).
+    pub n: V3<R>,
+}
+
+impl<R: Real> FrameOf<R> {
+    /// [`Frame::from_normal`].
+    #[inline(always)]
+    pub fn from_normal(n: V3<R>) -> Self {
+        // The sign bit of n.z, so that −0.0 takes the negative branch and σ + n.z never
+        // cancels to 0.
+        let sign = n.z.sign_one();
+        let a = -R::splat(1.0) / (sign + n.z);
+        let b = n.x * n.y * a;
+        let one = R::splat(1.0);
+        Self {
+            s: V3::new(one + sign * n.x * n.x * a, sign * b, -sign * n.x),
+            t: V3::new(b, sign + n.y * n.y * a, -n.y),
+            n,
+        }
+    }
+
+    /// [`Frame::from_normal_tangent`].
+    #[inline(always)]
+    pub fn from_normal_tangent(n: V3<R>, tangent: V3<R>) -> Self {
+        let s = tangent - n * n.dot(tangent);
+        let len2 = s.length_squared();
+        let usable = len2.finite() & !len2.le(R::splat(1e-12) * tangent.length_squared());
+        let fallback = Self::from_normal(n);
+        if !usable.any() {
+            return fallback;
+        }
+        let s = s / len2.sqrt();
+        let t = n.cross(s);
+        Self {
+            s: V3::select(usable, s, fallback.s),
+            t: V3::select(usable, t, fallback.t),
+            n,
+        }
+    }
+
+    /// [`Frame::to_local`].
+    #[inline(always)]
+    pub fn to_local(&self, v: V3<R>) -> V3<R> {
+        V3::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
+    }
+
+    /// [`Frame::to_world`].
+    #[inline(always)]
+    pub fn to_world(&self, v: V3<R>) -> V3<R> {
+        self.s * v.x + self.t * v.y + self.n * v.z
+    }
+}
+
+impl From<FrameOf<f32>> for Frame {
+    #[inline(always)]
+    fn from(f: FrameOf<f32>) -> Self {
+        Self {
+            s: f.s.into(),
+            t: f.t.into(),
+            n: f.n.into(),
+        }
     }
 }
 

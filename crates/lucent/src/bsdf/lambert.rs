@@ -7,7 +7,10 @@ use glam::{Vec2, Vec3};
 
 use super::BsdfSample;
 use crate::Rgb;
-use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::lanes::{Real, V3};
+use crate::sampling::warp::{
+    cosine_hemisphere, cosine_hemisphere_pdf, square_to_cosine_hemisphere,
+};
 
 /// The Lambert variant's parameters.
 pub(super) struct Lambert {
@@ -17,8 +20,9 @@ pub(super) struct Lambert {
 impl Lambert {
     /// `f·cos θi = albedo·cos θi/π` on the front side, zero elsewhere.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        if wo.z > 0.0 && wi.z > 0.0 {
-            self.albedo * (wi.z * FRAC_1_PI)
+        let (front, cos_over_pi) = lambert_eval(wo.into(), wi.into());
+        if front {
+            self.albedo * cos_over_pi
         } else {
             Rgb::BLACK
         }
@@ -26,22 +30,54 @@ impl Lambert {
 
     /// `cos θi/π`, the density of [`sample_cosine`], on the front side.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z > 0.0 { cosine_pdf(wi) } else { 0.0 }
+        lambert_pdf(wo.into(), wi.into())
     }
 
     /// A cosine-weighted direction; the weight `f·cos/pdf` is then exactly the albedo.
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
-        if wo.z <= 0.0 || self.albedo.is_black() {
+        if self.albedo.is_black() {
             return None;
         }
-        let wi = sample_cosine(u)?;
-        Some(BsdfSample {
-            wi,
+        let (ok, wi, pdf) = lambert_sample(wo.into(), u.x, u.y);
+        ok.then(|| BsdfSample {
+            wi: wi.into(),
             weight: self.albedo,
-            pdf: cosine_pdf(wi),
+            pdf,
             delta: false,
         })
     }
+}
+
+/// Lambert's value without its albedo, for any [`Real`] (written once for one path and for
+/// lanes): where both directions are above the surface (the mask), `cos θi/π`.
+#[inline(always)]
+pub fn lambert_eval<R: Real>(wo: V3<R>, wi: V3<R>) -> (R::Mask, R) {
+    let zero = R::splat(0.0);
+    (wo.z.gt(zero) & wi.z.gt(zero), wi.z * R::splat(FRAC_1_PI))
+}
+
+/// Lambert's density for any [`Real`]: `cos θi/π` when `wo` is above the surface, else 0.
+#[inline(always)]
+pub fn lambert_pdf<R: Real>(wo: V3<R>, wi: V3<R>) -> R {
+    R::select(
+        wo.z.gt(R::splat(0.0)),
+        cosine_hemisphere_pdf(wi.z),
+        R::splat(0.0),
+    )
+}
+
+/// Lambert's sample for any [`Real`]: where the mask holds, a cosine-weighted direction and
+/// its density (the weight is the albedo); not where `wo` is below the surface, or the
+/// direction fell on the rim ([`sample_cosine`]).
+#[inline(always)]
+pub fn lambert_sample<R: Real>(wo: V3<R>, ux: R, uy: R) -> (R::Mask, V3<R>, R) {
+    let wi = cosine_hemisphere(ux, uy);
+    let zero = R::splat(0.0);
+    (
+        wo.z.gt(zero) & wi.z.gt(zero),
+        wi,
+        cosine_hemisphere_pdf(wi.z),
+    )
 }
 
 /// A direction in the upper hemisphere with density `cos θ/π`

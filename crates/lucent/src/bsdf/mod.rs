@@ -70,7 +70,7 @@ mod chi2;
 #[cfg(test)]
 mod tests;
 
-pub use frame::Frame;
+pub use frame::{Frame, FrameOf};
 pub use gltf_pbr::GltfPbr;
 pub use microfacet::{Distribution, Microfacet};
 pub use principled::Principled;

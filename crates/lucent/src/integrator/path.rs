@@ -32,6 +32,7 @@ use super::vertex::{Vertex, footprint_of_sample};
 use super::{RayStats, unless_untraceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
+use crate::lanes::Real;
 use crate::sampling::sobol::Sampler;
 use crate::scene::{Beam, Scene};
 use glam::Vec3;
@@ -58,15 +59,20 @@ impl Default for PathTracer {
 /// The power heuristic with exponent 2 for a sample of density `a` against one of density `b`.
 #[inline]
 pub fn power_heuristic(a: f32, b: f32) -> f32 {
+    power_heuristic_of(a, b)
+}
+
+/// [`power_heuristic`] for any [`Real`], written once for one path and for lanes: 0 where `a`
+/// is not positive or either density is NaN, 1 where `a` is infinite.
+#[inline(always)]
+pub fn power_heuristic_of<R: Real>(a: R, b: R) -> R {
     // As a ratio, so that squares of huge densities cannot overflow: a²/(a²+b²) = 1/(1+(b/a)²).
-    if a.is_nan() || b.is_nan() || a <= 0.0 {
-        return 0.0;
-    }
-    if a.is_infinite() {
-        return 1.0;
-    }
+    let one = R::splat(1.0);
     let r = b / a;
-    1.0 / (1.0 + r * r)
+    let w = one / (one + r * r);
+    let w = R::select(a.eq(R::splat(f32::INFINITY)), one, w);
+    let none = !a.gt(R::splat(0.0)) | !b.eq(b);
+    R::select(none, R::splat(0.0), w)
 }
 
 impl PathTracer {

@@ -25,7 +25,7 @@ pub use classic::Approximation;
 pub use gltf::GltfMaps;
 pub use principled::{PrincipledMaps, PrincipledThinMaps};
 pub use scattering::{Part, Scattering, ScatteringSample, Side, Terminator};
-pub use shading::{Geometry, facing};
+pub use shading::{Geometry, facing, facing_lanes};
 
 use std::sync::Arc;
 

@@ -13,8 +13,10 @@
 //!   arrives through a surface.
 
 use glam::{Vec2, Vec3};
+use wide::f32x8;
 
 use crate::Rgb;
+use crate::lanes::{LANES, Real, V3};
 
 /// `cos θ` of the viewer above the shading horizon that [`facing`] keeps.
 const MIN_COS: f32 = 1e-2;
@@ -98,15 +100,42 @@ impl Geometry {
 /// policy in the module docs). `ns` itself where it already is, or where `wo` grazes `ng`.
 #[inline]
 pub fn facing(ns: Vec3, ng: Vec3, wo: Vec3) -> Vec3 {
+    let (keep, side) = keeps_facing(ns.into(), ng.into(), wo.into());
+    if keep {
+        ns
+    } else {
+        tilted(ns, ng, wo, side.signum())
+    }
+}
+
+/// [`facing`] for eight lanes: the same test in every lane, the turn ([`tilted`]) lane by lane
+/// where it is needed, so that each lane has the scalar's bits.
+#[inline(always)]
+pub fn facing_lanes(ns: V3<f32x8>, ng: V3<f32x8>, wo: V3<f32x8>) -> V3<f32x8> {
+    let (keep, side) = keeps_facing(ns, ng, wo);
+    if keep.all() {
+        return ns;
+    }
+    let keep = keep.to_bitmask();
+    let out: [Vec3; LANES] = std::array::from_fn(|i| {
+        if keep & (1 << i) != 0 {
+            ns.lane(i)
+        } else {
+            let side = side.as_array()[i].signum();
+            tilted(ns.lane(i), ng.lane(i), wo.lane(i), side)
+        }
+    });
+    V3::gather(&out)
+}
+
+/// Whether [`facing`] keeps `ns` (where `wo` grazes `ng`, or is already `MIN_COS` above the
+/// shading horizon on `ng`'s side), and `wo·ng`.
+#[inline(always)]
+fn keeps_facing<R: Real>(ns: V3<R>, ng: V3<R>, wo: V3<R>) -> (R::Mask, R) {
     let side = wo.dot(ng);
-    if side == 0.0 || !side.is_finite() {
-        return ns;
-    }
-    let side = side.signum();
-    if wo.dot(ns) * side >= MIN_COS {
-        return ns;
-    }
-    tilted(ns, ng, wo, side)
+    let grazing = side.eq(R::splat(0.0)) | !side.finite();
+    let above = (wo.dot(ns) * side.sign_one()).ge(R::splat(MIN_COS));
+    (grazing | above, side)
 }
 
 /// [`facing`] where `ns` must turn (kept out of line: most shading normals already face `wo`).

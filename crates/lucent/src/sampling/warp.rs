@@ -6,28 +6,41 @@
 //! function says. Every warp is continuous and area-preserving up to its density, so
 //! stratified input (see [`super::sobol`]) stays stratified on the output.
 
-use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, TAU};
+use std::f32::consts::{FRAC_1_PI, FRAC_PI_4, TAU};
 
 use glam::{Vec2, Vec3};
+
+use crate::lanes::{Real, V3, sin_cos_quarter};
 
 /// The point of the unit disk for `u` by Shirley and Chiu's concentric map: squares around the
 /// centre of `[0, 1)²` go to circles around the centre of the disk, so nearby points stay
 /// nearby and strata keep their shape. Uniform over the disk: density
 /// [`concentric_disk_pdf`] per unit area.
 pub fn square_to_concentric_disk(u: Vec2) -> Vec2 {
+    let (x, y) = concentric_disk(u.x, u.y);
+    Vec2::new(x, y)
+}
+
+/// [`square_to_concentric_disk`] for any [`Real`], written once for one path and for lanes.
+#[inline(always)]
+pub fn concentric_disk<R: Real>(ux: R, uy: R) -> (R, R) {
     // To [-1, 1)², then each quarter between the diagonals to a quarter of the disk:
     // r = the larger coordinate, the angle proportional to the ratio of the coordinates.
-    let o = 2.0 * u - Vec2::ONE;
-    if o.x == 0.0 && o.y == 0.0 {
-        return Vec2::ZERO;
-    }
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, FRAC_PI_4 * (o.y / o.x))
-    } else {
-        (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
-    };
-    let (sin, cos) = theta.sin_cos();
-    r * Vec2::new(cos, sin)
+    let (one, two) = (R::splat(1.0), R::splat(2.0));
+    let (ox, oy) = (two * ux - one, two * uy - one);
+    let centre = ox.eq(R::splat(0.0)) & oy.eq(R::splat(0.0));
+    // The left and right quarters: r = ox at angle φ = π/4·(oy/ox). The top and bottom ones:
+    // r = oy at angle π/2 − φ, φ = π/4·(ox/oy), whose sine and cosine are φ's cosine and sine.
+    let sideways = ox.abs().gt(oy.abs());
+    let (r, ratio) = (
+        R::select(sideways, ox, oy),
+        R::select(sideways, oy / ox, ox / oy),
+    );
+    let (sin, cos) = sin_cos_quarter(R::splat(FRAC_PI_4) * ratio);
+    let x = r * R::select(sideways, cos, sin);
+    let y = r * R::select(sideways, sin, cos);
+    let zero = R::splat(0.0);
+    (R::select(centre, zero, x), R::select(centre, zero, y))
 }
 
 /// The density of [`square_to_concentric_disk`] per unit area of the disk: `1/π`.
@@ -39,15 +52,21 @@ pub fn concentric_disk_pdf() -> f32 {
 /// (Malley's method: a uniform point of the concentric disk lifted onto the hemisphere). Its
 /// density per unit solid angle is [`cosine_hemisphere_pdf`]`(z)`.
 pub fn square_to_cosine_hemisphere(u: Vec2) -> Vec3 {
-    let d = square_to_concentric_disk(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    Vec3::new(d.x, d.y, z)
+    cosine_hemisphere(u.x, u.y).into()
+}
+
+/// [`square_to_cosine_hemisphere`] for any [`Real`].
+#[inline(always)]
+pub fn cosine_hemisphere<R: Real>(ux: R, uy: R) -> V3<R> {
+    let (x, y) = concentric_disk(ux, uy);
+    let z = (R::splat(1.0) - (x * x + y * y)).max(R::splat(0.0)).sqrt();
+    V3::new(x, y, z)
 }
 
 /// The density per unit solid angle of [`square_to_cosine_hemisphere`] for a direction with
 /// `cos θ = cos_theta`: `cos θ / π`, and 0 below the horizon.
-pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
-    cos_theta.max(0.0) * FRAC_1_PI
+pub fn cosine_hemisphere_pdf<R: Real>(cos_theta: R) -> R {
+    cos_theta.max(R::splat(0.0)) * R::splat(FRAC_1_PI)
 }
 
 /// The unit vector at height `z` and azimuth `phi`.
