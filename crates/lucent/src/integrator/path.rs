@@ -28,13 +28,15 @@
 //! Rays that escape see the scene's environment (its background colour or image), which also
 //! lights the scene; the ambient term of the classic model is not used.
 
-use super::vertex::{Vertex, footprint_of_sample};
+use super::vertex::{Bounce, Vertex, footprint_of_sample};
 use super::{RayStats, unless_untraceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::lanes::Real;
 use crate::sampling::sobol::Sampler;
 use crate::scene::{Beam, Scene};
+use crate::shape::SurfaceHit;
+use crate::spawn::Leaving;
 use glam::Vec3;
 use lucent_accel::Ray;
 
@@ -98,88 +100,183 @@ impl PathTracer {
         stats: &mut RayStats,
     ) -> Rgb {
         let untraceable = stats.untraceable;
-        let mut l = Rgb::BLACK;
-        let mut beta = Rgb::WHITE;
-        let mut ray = *camera_ray;
-        let mut from = None;
-        // Where the last bounce was and the density of its BSDF sample, for weighing an
-        // emitter it hits; `None` after the camera or a delta lobe (weight 1).
-        let mut last: Option<(Vec3, f32)> = None;
-        for depth in 0.. {
-            // Every bounce spends the same dimensions, whichever branches it takes, so that
-            // each dimension means the same decision in every sample of a pixel; the numbers
-            // are drawn only where a branch uses them.
-            let mut u_light = sampler.defer(3);
-            let mut u_bsdf = sampler.defer(3);
-            let mut u_rr = sampler.defer(1);
-
-            let hit = match beam {
-                Some(beam) if depth == 0 && !scene.has_cutouts() => {
-                    scene.intersect_in(beam, &ray, &mut stats.traversal)
-                }
-                Some(beam) if depth == 0 => scene
-                    .intersect_in(beam, &ray, &mut stats.traversal)
-                    .and_then(|h| scene.opaque_beyond(h, &ray, &mut stats.traversal)),
-                _ => scene.intersect_opaque(&ray, from, &mut stats.traversal),
-            };
-            let Some(hit) = hit else {
-                let le = scene.background_along(ray.dir);
-                if !le.is_black() {
-                    let w = last.map_or(1.0, |(_, pdf)| {
-                        power_heuristic(pdf, scene.emitters.pdf_environment(ray.dir))
-                    });
-                    l += beta * le * w;
-                }
+        let mut path = Path::new(camera_ray);
+        loop {
+            let go_on = self.arrive(
+                scene,
+                beam,
+                &mut path,
+                sampler,
+                stats,
+                |path, hit, at, stats| {
+                    let mut v = Vertex::unresolved(path.ray.dir, hit);
+                    v.resolve(scene, at.footprint);
+                    if !v.bsdf.is_delta() {
+                        let mut u_light = at.u_light;
+                        let u = (u_light.next_1d(), u_light.next_2d());
+                        path.l += path.beta * v.direct_light(scene, u, true, stats);
+                    }
+                    let mut u_bsdf = at.u_bsdf;
+                    let u = (u_bsdf.next_1d(), u_bsdf.next_2d());
+                    let b = v.bounce(u, Transport::Radiance, stats);
+                    self.go_on(path, b, &v.hit, at.u_rr)
+                },
+            );
+            if !go_on {
                 break;
-            };
-            let footprint = footprint_of_sample(sampler.index());
-            let m = &scene.materials[hit.material as usize];
-            if m.emits_towards(hit.normal, ray.dir) {
-                let w = match (last, scene.emitters.area_light_of(hit.object)) {
-                    (Some((p, pdf)), Some(light)) => power_heuristic(
-                        pdf,
-                        scene.emitters.pdf_area(light, p, hit.point, hit.normal),
-                    ),
-                    _ => 1.0,
-                };
-                let le = match m.emission_map {
-                    None => m.ke,
-                    Some(_) => m.emission(&scene.tex_coords(m, &hit, footprint), &scene.images),
-                };
-                l += beta * le * w;
-            }
-
-            // The last bounce's ray was traced only for the light it finds (so that both
-            // techniques of the last vertex count, as MIS assumes).
-            if depth > self.max_depth {
-                break;
-            }
-            let mut v = Vertex::unresolved(ray.dir, hit);
-            v.resolve(scene, footprint);
-            if !v.bsdf.is_delta() {
-                let u = (u_light.next_1d(), u_light.next_2d());
-                l += beta * v.direct_light(scene, u, true, stats);
-            }
-            let u = (u_bsdf.next_1d(), u_bsdf.next_2d());
-            let Some(b) = v.bounce(u, Transport::Radiance, stats) else {
-                break;
-            };
-            beta *= b.sample.weight;
-            last = (!b.sample.delta).then_some((v.hit.point, b.sample.pdf));
-            ray = b.ray;
-            from = Some(b.from);
-
-            if depth + 1 >= self.rr_depth {
-                let q = beta.max_channel().min(0.95);
-                if u_rr.next_1d() >= q || q.is_nan() {
-                    break;
-                }
-                beta = beta / q;
             }
         }
         // A ray of the path that could not be traced leaves its estimate incomplete: dropped.
-        unless_untraceable(l, stats, untraceable)
+        unless_untraceable(path.l, stats, untraceable)
     }
+
+    /// The first half of a bounce, the same for one path and for lanes: the bounce's random
+    /// numbers set aside, the next hit found, the light of what the ray meets (an emitter, or
+    /// the environment when it escapes) added. Then `scatter` is called with the hit (passed
+    /// on, not stored: a hit is 200 bytes) and what it returns is returned; false when the
+    /// path ends here.
+    #[inline(always)]
+    pub(super) fn arrive(
+        &self,
+        scene: &Scene,
+        beam: Option<&Beam>,
+        path: &mut Path,
+        sampler: &mut Sampler,
+        stats: &mut RayStats,
+        scatter: impl FnOnce(&mut Path, SurfaceHit, Arrival, &mut RayStats) -> bool,
+    ) -> bool {
+        // Every bounce spends the same dimensions, whichever branches it takes, so that each
+        // dimension means the same decision in every sample of a pixel; the numbers are drawn
+        // only where a branch uses them.
+        let u_light = sampler.defer(3);
+        let u_bsdf = sampler.defer(3);
+        let u_rr = sampler.defer(1);
+
+        let ray = &path.ray;
+        let hit = match beam {
+            Some(beam) if path.depth == 0 && !scene.has_cutouts() => {
+                scene.intersect_in(beam, ray, &mut stats.traversal)
+            }
+            Some(beam) if path.depth == 0 => scene
+                .intersect_in(beam, ray, &mut stats.traversal)
+                .and_then(|h| scene.opaque_beyond(h, ray, &mut stats.traversal)),
+            _ => scene.intersect_opaque(ray, path.from, &mut stats.traversal),
+        };
+        let Some(hit) = hit else {
+            let le = scene.background_along(ray.dir);
+            if !le.is_black() {
+                let w = path.last.map_or(1.0, |(_, pdf)| {
+                    power_heuristic(pdf, scene.emitters.pdf_environment(ray.dir))
+                });
+                path.l += path.beta * le * w;
+            }
+            return false;
+        };
+        let footprint = footprint_of_sample(sampler.index());
+        let m = &scene.materials[hit.material as usize];
+        if m.emits_towards(hit.normal, ray.dir) {
+            let w = match (path.last, scene.emitters.area_light_of(hit.object)) {
+                (Some((p, pdf)), Some(light)) => power_heuristic(
+                    pdf,
+                    scene.emitters.pdf_area(light, p, hit.point, hit.normal),
+                ),
+                _ => 1.0,
+            };
+            let le = match m.emission_map {
+                None => m.ke,
+                Some(_) => m.emission(&scene.tex_coords(m, &hit, footprint), &scene.images),
+            };
+            path.l += path.beta * le * w;
+        }
+
+        // The last bounce's ray was traced only for the light it finds (so that both
+        // techniques of the last vertex count, as MIS assumes).
+        if path.depth > self.max_depth {
+            return false;
+        }
+        let at = Arrival {
+            footprint,
+            u_light,
+            u_bsdf,
+            u_rr,
+        };
+        scatter(path, hit, at, stats)
+    }
+
+    /// The last step of a bounce, the same for one path and for lanes: the path follows the
+    /// bounce `b` from `hit` (none: it ends), and past `rr_depth` bounces Russian roulette, with
+    /// `u_rr`, may end it. Whether it goes on.
+    #[inline(always)]
+    pub(super) fn go_on(
+        &self,
+        path: &mut Path,
+        b: Option<Bounce>,
+        hit: &SurfaceHit,
+        mut u_rr: Sampler,
+    ) -> bool {
+        let Some(b) = b else {
+            return false;
+        };
+        path.beta *= b.sample.weight;
+        path.last = (!b.sample.delta).then_some((hit.point, b.sample.pdf));
+        path.ray = b.ray;
+        path.from = Some(b.from);
+        let depth = path.depth;
+        path.depth += 1;
+        if depth + 1 >= self.rr_depth {
+            let q = path.beta.max_channel().min(0.95);
+            if u_rr.next_1d() >= q || q.is_nan() {
+                return false;
+            }
+            path.beta = path.beta / q;
+        }
+        true
+    }
+}
+
+/// A path being traced: what its loop carries from one bounce to the next.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Path {
+    /// The radiance gathered so far.
+    pub l: Rgb,
+    /// The throughput: the product of the bounces' weights.
+    pub beta: Rgb,
+    /// The ray to trace next.
+    pub ray: Ray,
+    /// The surface it leaves.
+    pub from: Option<Leaving>,
+    /// Where the last bounce was and the density of its BSDF sample, for weighing an emitter
+    /// it hits; `None` after the camera or a delta lobe (weight 1).
+    pub last: Option<(Vec3, f32)>,
+    /// Bounces so far (camera rays are depth 0).
+    pub depth: u32,
+}
+
+impl Path {
+    /// A path starting along a camera ray.
+    pub fn new(camera_ray: &Ray) -> Self {
+        Self {
+            l: Rgb::BLACK,
+            beta: Rgb::WHITE,
+            ray: *camera_ray,
+            from: None,
+            last: None,
+            depth: 0,
+        }
+    }
+}
+
+/// What a path's arrival at a hit passes on besides the hit: the bounce's random numbers
+/// ([`PathTracer::arrive`]).
+pub(super) struct Arrival {
+    /// The hit's texture footprint.
+    pub footprint: f32,
+    /// Light sampling's numbers (3 dimensions).
+    pub u_light: Sampler,
+    /// BSDF sampling's (3).
+    pub u_bsdf: Sampler,
+    /// Russian roulette's (1).
+    pub u_rr: Sampler,
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use super::path::power_heuristic;
 use super::{RayStats, traceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
+use crate::light::EmitterSample;
 use crate::material::{Geometry, Scattering, ScatteringSample};
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
@@ -90,37 +91,7 @@ impl<'a> Vertex<'a> {
             return Rgb::BLACK;
         };
         let (f, bsdf_pdf) = self.bsdf.eval_pdf(self.wo, s.wi, Transport::Radiance);
-        if f.is_black() {
-            return Rgb::BLACK;
-        }
-        let le = if s.distance.is_infinite() && !s.delta {
-            scene.background_along(s.wi)
-        } else {
-            s.radiance
-        };
-        if le.is_black() {
-            return Rgb::BLACK;
-        }
-        stats.shadow += 1;
-        let (ray, from) = spawn_ray(&self.hit, s.wi);
-        if !traceable(&ray, stats) {
-            return Rgb::BLACK;
-        }
-        // Stop short of the light's own surface.
-        let t_max = if s.distance.is_finite() {
-            s.distance * (1.0 - 1e-4)
-        } else {
-            f32::INFINITY
-        };
-        if scene.blocked(&ray, t_max, Some(from), &mut stats.traversal) {
-            return Rgb::BLACK;
-        }
-        let w = if s.delta || !mis {
-            1.0
-        } else {
-            power_heuristic(s.pdf, bsdf_pdf)
-        };
-        f * le * (w / s.pdf)
+        light_through(scene, &self.hit, &s, (f, bsdf_pdf), mis, stats)
     }
 
     /// The next direction, drawn from the BSDF with `(u_lobe, u)`, and the ray along it (counted
@@ -134,24 +105,7 @@ impl<'a> Vertex<'a> {
         stats: &mut RayStats,
     ) -> Option<Bounce> {
         let s = self.bsdf.sample(self.wo, u_lobe, u, mode)?;
-        if s.weight.is_black() {
-            return None;
-        }
-        let (ray, from) = spawn_ray(&self.hit, s.wi);
-        if !traceable(&ray, stats) {
-            return None;
-        }
-        if s.reflected {
-            stats.reflected += 1;
-        } else {
-            stats.refracted += 1;
-        }
-        Some(Bounce {
-            sample: s,
-            ray,
-            from,
-            reflected: s.reflected,
-        })
+        leave(&self.hit, s, stats)
     }
 
     /// `f(wo, wi)` — without the cosine — for a world direction `wi` arriving from elsewhere
@@ -171,4 +125,75 @@ impl<'a> Vertex<'a> {
             .map_or(0.0, |p| p.frame.n.dot(wi).abs());
         if cos <= 0.0 { Rgb::BLACK } else { f / cos }
     }
+}
+
+/// The light sample `s` at `hit`, where the BSDF's value for it is `f` (cosine included) and
+/// its density `bsdf_pdf`: `f·Le / p` if nothing blocks the shadow ray, weighted by the power
+/// heuristic against BSDF sampling when `mis`. The part of [`Vertex::direct_light`] after the
+/// BSDF, which the lane path tracer shares.
+#[inline]
+pub fn light_through(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    s: &EmitterSample,
+    (f, bsdf_pdf): (Rgb, f32),
+    mis: bool,
+    stats: &mut RayStats,
+) -> Rgb {
+    if f.is_black() {
+        return Rgb::BLACK;
+    }
+    let le = if s.distance.is_infinite() && !s.delta {
+        scene.background_along(s.wi)
+    } else {
+        s.radiance
+    };
+    if le.is_black() {
+        return Rgb::BLACK;
+    }
+    stats.shadow += 1;
+    let (ray, from) = spawn_ray(hit, s.wi);
+    if !traceable(&ray, stats) {
+        return Rgb::BLACK;
+    }
+    // Stop short of the light's own surface.
+    let t_max = if s.distance.is_finite() {
+        s.distance * (1.0 - 1e-4)
+    } else {
+        f32::INFINITY
+    };
+    if scene.blocked(&ray, t_max, Some(from), &mut stats.traversal) {
+        return Rgb::BLACK;
+    }
+    let w = if s.delta || !mis {
+        1.0
+    } else {
+        power_heuristic(s.pdf, bsdf_pdf)
+    };
+    f * le * (w / s.pdf)
+}
+
+/// The ray leaving `hit` along the scattered sample `s` (counted as reflected or refracted in
+/// `stats`); `None` when it carries nothing or cannot be traced. The part of
+/// [`Vertex::bounce`] after the BSDF, which the lane path tracer shares.
+#[inline(always)]
+pub fn leave(hit: &SurfaceHit, s: ScatteringSample, stats: &mut RayStats) -> Option<Bounce> {
+    if s.weight.is_black() {
+        return None;
+    }
+    let (ray, from) = spawn_ray(hit, s.wi);
+    if !traceable(&ray, stats) {
+        return None;
+    }
+    if s.reflected {
+        stats.reflected += 1;
+    } else {
+        stats.refracted += 1;
+    }
+    Some(Bounce {
+        sample: s,
+        ray,
+        from,
+        reflected: s.reflected,
+    })
 }
