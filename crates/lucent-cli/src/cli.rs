@@ -350,6 +350,11 @@ pub struct RenderArgs {
     /// (every ray from the root of the accelerators). The image is the same.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub beam: OnOff,
+    /// Trace the path tracer's samples eight at a time, shading the materials that lanes know
+    /// in SIMD lanes: `on` (the default, faster) or `off` (one path at a time). The image is
+    /// the same.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lanes: OnOff,
     /// Render only shard I of N (tiles I, I+N, I+2N, …), as `I/N`; `auto/N` takes I from
     /// $SLURM_ARRAY_TASK_ID or $JOB_COMPLETION_INDEX.
     #[arg(long, value_name = "I/N")]

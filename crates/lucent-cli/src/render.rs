@@ -60,6 +60,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     settings.threads = usize::from(args.threads);
     settings.beam = args.beam == crate::cli::OnOff::On;
+    settings.lanes = args.lanes == crate::cli::OnOff::On;
     settings.shard = plan.shard;
     if matches!(settings.integrator, Integrator::Sppm(_)) {
         if args.checkpoint_every.is_some() || args.resume.is_some() {

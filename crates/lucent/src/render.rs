@@ -13,6 +13,7 @@
 //! **Resuming** starts from a film that already holds some samples per pixel and adds the
 //! missing ones, from the next sample index on.
 
+use crate::Rgb;
 use crate::film::Film;
 use crate::film::filter::{Filter, FilterSampler};
 use crate::film::splat::{Commits, FilterSampling, TileSplats};
@@ -29,7 +30,9 @@ use std::time::{Duration, Instant};
 use thiserror::Error;
 
 mod camera_sample;
+mod lanes;
 use camera_sample::{at_instant, camera_ray, draw};
+use lanes::Tracing;
 
 /// Samples per pixel in one pass over the tiles (see [`render`]).
 pub const PASS_SAMPLES: u32 = 64;
@@ -86,6 +89,9 @@ pub struct RenderSettings {
     /// towards point lights: the same image, faster. Adaptive sampling, the photon mapper and
     /// the debug views trace per pixel whatever this says.
     pub beam: bool,
+    /// Trace the path tracer's samples eight at a time, shading the materials lanes know
+    /// ([`crate::integrator::path_lanes`]) in SIMD lanes: the same image, bit for bit.
+    pub lanes: bool,
 }
 
 /// How a pixel's value is sampled.
@@ -113,6 +119,7 @@ impl Default for RenderSettings {
             filter_sampling: FilterSampling::default(),
             time_limit: None,
             beam: true,
+            lanes: true,
         }
     }
 }
@@ -551,7 +558,6 @@ fn render_tile(
     cancel: &AtomicBool,
 ) -> (RayStats, u64) {
     let mut stats = RayStats::default();
-    let mut taken = 0;
     let width = u64::from(scene.camera.width());
     let beam = tile_beam(scene, settings, tile);
     // The first hits are found for many samples together, in one scene: of one instant.
@@ -573,37 +579,45 @@ fn render_tile(
         );
     }
     let mut instants = scene.instants();
+    let mut tracing = Tracing::new(scene, settings);
+    let add = |(part, taken): &mut (&mut Film, u64),
+               (px, py, weight): (u32, u32, f32),
+               value: Rgb,
+               stats: &mut RayStats| {
+        let finite = value.is_finite() && weight.is_finite();
+        stats.nonfinite += u64::from(!finite);
+        part.add_sample(px, py, finite.then_some(value), weight);
+        *taken += 1;
+    };
+    let mut out = (part, 0);
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
-                return (stats, taken);
+                tracing.finish((scene, beam.as_ref()), (&mut stats, &mut out), &add);
+                return (stats, out.1);
             }
             let pixel = u64::from(y) * width + u64::from(x);
             let (px, py) = (x - tile.x0, y - tile.y0);
-            for s in part.samples(px, py)..upto {
+            for s in out.0.samples(px, py)..upto {
                 if cancel.load(Ordering::Relaxed) {
-                    return (stats, taken);
+                    return (stats, out.1);
                 }
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
                 let d = draw(scene, settings, pixel, s, &mut sampler);
                 let scene = at_instant(scene, &mut instants, d.time);
                 let (ray, weight) = camera_ray(scene, settings, filter, (x, y), &d);
                 stats.camera += 1;
-                let value = settings.integrator.radiance_in(
-                    scene,
-                    beam.as_ref(),
-                    &ray,
-                    &mut sampler,
-                    &mut stats,
+                tracing.trace(
+                    (scene, settings, beam.as_ref()),
+                    (ray, sampler, (px, py, weight)),
+                    (&mut stats, &mut out),
+                    &add,
                 );
-                let finite = value.is_finite() && weight.is_finite();
-                stats.nonfinite += u64::from(!finite);
-                part.add_sample(px, py, finite.then_some(value), weight);
-                taken += 1;
             }
         }
     }
-    (stats, taken)
+    tracing.finish((scene, beam.as_ref()), (&mut stats, &mut out), &add);
+    (stats, out.1)
 }
 
 /// A tile's beam under the Whitted integrator, with what its samples need.
@@ -684,23 +698,34 @@ fn render_tile_splats(
     cancel: &AtomicBool,
 ) -> (RayStats, u64, Option<TileSplats>) {
     let mut stats = RayStats::default();
-    let mut taken = 0;
     let (w, h) = (tile.x1 - tile.x0, tile.y1 - tile.y0);
-    let mut splats = TileSplats::new(tile.x0, tile.y0, w, h, &settings.filter);
+    let splats = TileSplats::new(tile.x0, tile.y0, w, h, &settings.filter);
     let width = u64::from(scene.camera.width());
     let beam = tile_beam(scene, settings, tile);
     let mut instants = scene.instants();
+    let mut tracing = Tracing::new(scene, settings);
+    let add = |(splats, taken): &mut (TileSplats, u64),
+               ((x, y), at): ((u32, u32), (f32, f32)),
+               value: Rgb,
+               stats: &mut RayStats| {
+        let finite = value.is_finite();
+        stats.nonfinite += u64::from(!finite);
+        splats.add(&settings.filter, (x, y), at, finite.then_some(value));
+        *taken += 1;
+    };
+    let mut out = (splats, 0);
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             if deadline.is_some_and(|d| Instant::now() >= d) {
-                return (stats, taken, Some(splats));
+                tracing.finish((scene, beam.as_ref()), (&mut stats, &mut out), &add);
+                return (stats, out.1, Some(out.0));
             }
             let pixel = u64::from(y) * width + u64::from(x);
             for s in start.samples(x - tile.x0, y - tile.y0)..upto {
                 if cancel.load(Ordering::Relaxed) {
                     // A tile cut short is not added: the image keeps whole tiles in tile order,
                     // which is what a resumed render continues from.
-                    return (stats, taken, None);
+                    return (stats, out.1, None);
                 }
                 let mut sampler = Sampler::new(settings.seed, pixel, s);
                 // Uniform in the pixel: the filter weighs the sample where it lands.
@@ -709,21 +734,17 @@ fn render_tile_splats(
                 let (sx, sy) = (x as f32 + d.in_pixel.x, y as f32 + d.in_pixel.y);
                 let ray = scene.camera.ray_through_lens(sx, sy, d.lens);
                 stats.camera += 1;
-                let value = settings.integrator.radiance_in(
-                    scene,
-                    beam.as_ref(),
-                    &ray,
-                    &mut sampler,
-                    &mut stats,
+                tracing.trace(
+                    (scene, settings, beam.as_ref()),
+                    (ray, sampler, ((x, y), (sx, sy))),
+                    (&mut stats, &mut out),
+                    &add,
                 );
-                let finite = value.is_finite();
-                stats.nonfinite += u64::from(!finite);
-                splats.add(&settings.filter, (x, y), (sx, sy), finite.then_some(value));
-                taken += 1;
             }
         }
     }
-    (stats, taken, Some(splats))
+    tracing.finish((scene, beam.as_ref()), (&mut stats, &mut out), &add);
+    (stats, out.1, Some(out.0))
 }
 
 /// Whether camera rays go through beams: beams are on and the integrator is not a debug

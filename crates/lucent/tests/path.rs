@@ -363,3 +363,74 @@ fn a_thin_lens_blurs_what_is_out_of_focus() {
         "in focus {sharp} pixels lit, out of focus {blurred}"
     );
 }
+
+#[test]
+fn paths_in_lanes_make_the_image_of_paths_one_at_a_time() {
+    // A Lambertian ball (shaded in lanes) beside a rough metal one (shaded per path) on a
+    // Lambertian floor, under a white sky and a point light; 5 samples a pixel, so that lane
+    // groups span pixels and end short. Kept in each pixel (the box filter) and splatted.
+    let camera = Camera::new(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO, Vec3::Y, 40.0, 20, 15).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    b.background(Rgb::gray(0.8));
+    let floor = b.material(Material::lambertian(Rgb::new(0.7, 0.6, 0.5)));
+    let ball = b.material(Material::lambertian(Rgb::new(0.2, 0.4, 0.8)));
+    let metal = b.material(
+        Material::physically_based(
+            Surface::Conductor {
+                eta: Texture::from(0.2),
+                k: Texture::from(3.0),
+                specular: Texture::from(1.0),
+                roughness: Some(Roughness::isotropic(Distribution::Ggx, 0.3)),
+            },
+            &[],
+        )
+        .0,
+    );
+    b.plane(
+        lucent::shape::Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::Y),
+        floor,
+    );
+    b.sphere(
+        Sphere {
+            center: Vec3::new(-0.6, -0.4, 0.0),
+            radius: 0.6,
+        },
+        ball,
+    );
+    b.sphere(
+        Sphere {
+            center: Vec3::new(0.7, -0.5, 0.2),
+            radius: 0.5,
+        },
+        metal,
+    );
+    b.light(lucent::light::Light::Point(
+        lucent::light::point::PointLight {
+            position: Vec3::new(1.0, 2.0, 2.0),
+            intensity: Rgb::gray(4.0),
+            falloff: lucent::light::point::Falloff::Quadratic,
+        },
+    ));
+    let scene = b.build().unwrap();
+    for filter in [
+        Filter::default(),
+        Filter::Gaussian {
+            radius: 2.0,
+            sigma: 0.5,
+        },
+    ] {
+        let settings = |lanes, threads| RenderSettings {
+            integrator: Integrator::Path(PathTracer::default()),
+            spp: 5,
+            threads,
+            tile_size: 8,
+            filter,
+            lanes,
+            ..RenderSettings::default()
+        };
+        let one_at_a_time = common::render_all(&scene, &settings(false, 1));
+        let in_lanes = common::render_all(&scene, &settings(true, 2));
+        assert_eq!(in_lanes.film, one_at_a_time.film, "{filter:?}");
+        assert_eq!(in_lanes.stats.rays, one_at_a_time.stats.rays, "{filter:?}");
+    }
+}

@@ -54,7 +54,7 @@ mod conductor;
 mod dielectric;
 pub mod gltf_pbr;
 mod gltf_translucent;
-mod lambert;
+pub(crate) mod lambert;
 mod plastic;
 pub mod principled;
 pub mod principled_thin;

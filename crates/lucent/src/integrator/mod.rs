@@ -8,6 +8,7 @@
 
 pub mod debug;
 pub mod path;
+pub mod path_lanes;
 pub mod raycast;
 pub mod record;
 pub mod sppm;

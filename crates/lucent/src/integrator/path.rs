@@ -108,19 +108,7 @@ impl PathTracer {
                 &mut path,
                 sampler,
                 stats,
-                |path, hit, at, stats| {
-                    let mut v = Vertex::unresolved(path.ray.dir, hit);
-                    v.resolve(scene, at.footprint);
-                    if !v.bsdf.is_delta() {
-                        let mut u_light = at.u_light;
-                        let u = (u_light.next_1d(), u_light.next_2d());
-                        path.l += path.beta * v.direct_light(scene, u, true, stats);
-                    }
-                    let mut u_bsdf = at.u_bsdf;
-                    let u = (u_bsdf.next_1d(), u_bsdf.next_2d());
-                    let b = v.bounce(u, Transport::Radiance, stats);
-                    self.go_on(path, b, &v.hit, at.u_rr)
-                },
+                |path, hit, at, stats| self.scatter(scene, path, hit, at, stats),
             );
             if !go_on {
                 break;
@@ -201,6 +189,30 @@ impl PathTracer {
             u_rr,
         };
         scatter(path, hit, at, stats)
+    }
+
+    /// The second half of a bounce for one path: the material resolved at `hit`, direct light
+    /// by light sampling, the next direction by BSDF sampling. Whether the path goes on.
+    #[inline(always)]
+    pub(super) fn scatter(
+        &self,
+        scene: &Scene,
+        path: &mut Path,
+        hit: SurfaceHit,
+        at: Arrival,
+        stats: &mut RayStats,
+    ) -> bool {
+        let mut v = Vertex::unresolved(path.ray.dir, hit);
+        v.resolve(scene, at.footprint);
+        if !v.bsdf.is_delta() {
+            let mut u_light = at.u_light;
+            let u = (u_light.next_1d(), u_light.next_2d());
+            path.l += path.beta * v.direct_light(scene, u, true, stats);
+        }
+        let mut u_bsdf = at.u_bsdf;
+        let u = (u_bsdf.next_1d(), u_bsdf.next_2d());
+        let b = v.bounce(u, Transport::Radiance, stats);
+        self.go_on(path, b, &v.hit, at.u_rr)
     }
 
     /// The last step of a bounce, the same for one path and for lanes: the path follows the

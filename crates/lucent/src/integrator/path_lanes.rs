@@ -1,0 +1,486 @@
+//! Paths in lanes: the path tracer run on up to eight paths at once, bounce by bounce, with the
+//! shading of the surfaces that lanes know ([`LaneMaterials`]: constant Lambertian ones, for
+//! now) done for all of them together in [`wide::f32x8`] lanes, and everything else per path
+//! by the scalar path tracer's own steps ([`PathTracer::arrive`], the scalar scatter,
+//! [`light_through`], [`leave`], [`PathTracer::go_on`]).
+//!
+//! The lane code is the scalar code: the shading frame, Lambert's value, density and sample and
+//! the facing test are written once over [`Real`] and run at `f32` by the scalar path
+//! tracer. A path traced in a lane therefore gets exactly the bits it gets alone — the test
+//! `lanes_give_the_scalar_paths_bits` holds the two to that — and an image is the same with
+//! lanes or without, on any number of threads.
+
+use arrayvec::ArrayVec;
+use glam::Vec3;
+use wide::f32x8;
+
+use super::path::{Arrival, Path, PathTracer};
+use super::vertex::{leave, light_through};
+use super::{RayStats, UNTRACEABLE};
+use crate::Rgb;
+use crate::bsdf::FrameOf;
+use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
+use crate::lanes::{LANES, Mask as _, Real, V3};
+use crate::light::EmitterSample;
+use crate::material::{Geometry, ScatteringSample, Surface, facing_lanes};
+use crate::sampling::sobol::Sampler;
+use crate::scene::{Beam, Scene};
+use crate::shape::SurfaceHit;
+use crate::texture::Texture;
+use lucent_accel::Ray;
+
+/// Which of a scene's materials the lanes shade, and how.
+#[derive(Clone, Debug, Default)]
+pub struct LaneMaterials {
+    /// Per material: the constant Lambertian it is, if it is one.
+    lambert: Vec<Option<Lambertian>>,
+}
+
+/// A constant Lambertian material, as lanes shade it.
+#[derive(Clone, Copy, Debug)]
+struct Lambertian {
+    albedo: Rgb,
+    /// Whether the hit's vertex colour multiplies the albedo.
+    vertex_colors: bool,
+    two_sided: bool,
+}
+
+impl LaneMaterials {
+    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`) of
+    /// one finite, non-negative, non-black colour. Any other material is shaded per path.
+    pub fn of(scene: &Scene) -> Self {
+        let usable =
+            |c: &Rgb| c.is_finite() && !c.is_black() && c.to_array().iter().all(|&v| v >= 0.0);
+        let lambert = scene
+            .materials
+            .iter()
+            .map(|m| match &m.surface {
+                Surface::Diffuse {
+                    reflectance: Texture::Solid(c),
+                } if usable(c) => Some(Lambertian {
+                    albedo: *c,
+                    vertex_colors: m.vertex_colors,
+                    two_sided: m.two_sided,
+                }),
+                _ => None,
+            })
+            .collect();
+        Self { lambert }
+    }
+
+    /// Whether lanes shade any material of the scene.
+    pub fn any(&self) -> bool {
+        self.lambert.iter().any(Option::is_some)
+    }
+}
+
+/// A path of a lane group that arrived at a Lambertian surface this bounce.
+struct LambertHit {
+    /// Its lane.
+    lane: usize,
+    hit: SurfaceHit,
+    at: Arrival,
+    albedo: Rgb,
+    two_sided: bool,
+}
+
+impl PathTracer {
+    /// [`PathTracer::radiance_in`] for up to [`LANES`] camera rays at once (`samplers[i]` is
+    /// ray `i`'s): the same radiance for each, bit for bit.
+    pub fn radiance_lanes(
+        &self,
+        scene: &Scene,
+        lanes: &LaneMaterials,
+        beam: Option<&Beam>,
+        rays: &[Ray],
+        samplers: &mut [Sampler],
+        stats: &mut RayStats,
+    ) -> ArrayVec<Rgb, LANES> {
+        let n = rays.len();
+        assert!(
+            n <= LANES && samplers.len() == n,
+            "{n} rays, {} samplers",
+            samplers.len()
+        );
+        let mut paths: ArrayVec<Path, LANES> = rays.iter().map(Path::new).collect();
+        let mut alive: u32 = (1 << n) - 1;
+        // Lanes whose path met a ray it could not trace: their estimate is dropped.
+        let mut untraceable = 0u32;
+        while alive != 0 {
+            let mut batch = ArrayVec::<LambertHit, LANES>::new();
+            let bounce_alive = alive;
+            for lane in (0..n).filter(|&i| bounce_alive & (1 << i) != 0) {
+                let before = stats.untraceable;
+                let sampler = &mut samplers[lane];
+                let go_on = self.arrive(
+                    scene,
+                    beam,
+                    &mut paths[lane],
+                    sampler,
+                    stats,
+                    |path, hit, at, stats| match lanes
+                        .lambert
+                        .get(hit.material as usize)
+                        .copied()
+                        .flatten()
+                    {
+                        Some(m) => {
+                            // The leaf's albedo as Resolve makes it: times the vertex colour
+                            // (the hit's, white on shapes without) where the material says.
+                            let color = if m.vertex_colors {
+                                hit.color
+                            } else {
+                                Rgb::WHITE
+                            };
+                            batch.push(LambertHit {
+                                lane,
+                                albedo: m.albedo * color,
+                                two_sided: m.two_sided,
+                                hit,
+                                at,
+                            });
+                            true
+                        }
+                        None => self.scatter(scene, path, hit, at, stats),
+                    },
+                );
+                if !go_on {
+                    alive &= !(1 << lane);
+                }
+                if stats.untraceable != before {
+                    untraceable |= 1 << lane;
+                }
+            }
+            if !batch.is_empty() {
+                alive &= !self.scatter_lambert(scene, &batch, &mut paths, &mut untraceable, stats);
+            }
+        }
+        paths
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                if untraceable & (1 << i) != 0 {
+                    UNTRACEABLE
+                } else {
+                    p.l
+                }
+            })
+            .collect()
+    }
+
+    /// The scatter of every path in `batch` (all at constant Lambertian surfaces): the shading
+    /// frames, the light samples' BSDF values and densities and the BSDF samples in lanes, the
+    /// light and shadow rays, the bounces and Russian roulette per path. Returns the lanes whose
+    /// paths ended; marks in `untraceable` those that met a ray they could not trace.
+    fn scatter_lambert(
+        &self,
+        scene: &Scene,
+        batch: &[LambertHit],
+        paths: &mut [Path],
+        untraceable: &mut u32,
+        stats: &mut RayStats,
+    ) -> u32 {
+        let k = batch.len();
+        // Lanes past the batch repeat its first path; their results are not read.
+        let of = |j: usize| &batch[if j < k { j } else { 0 }];
+        let vec = |f: &dyn Fn(&LambertHit) -> Vec3| V3::gather(&std::array::from_fn(|j| f(of(j))));
+        let mask = |f: &dyn Fn(&LambertHit) -> bool| {
+            let bits: [u32; LANES] = std::array::from_fn(|j| if f(of(j)) { !0 } else { 0 });
+            wide::bytemuck::cast::<[u32; LANES], f32x8>(bits)
+        };
+
+        // The part Resolve makes of a Lambertian leaf (material/scattering.rs): seen from the
+        // back, a two-sided surface turns its normals round; the shading normal then faces
+        // the viewer ([`crate::material::facing`]), the frame follows ∂p/∂u.
+        let dir = vec(&|h| paths[h.lane].ray.dir);
+        let wo = -dir;
+        let ng = vec(&|h| h.hit.normal);
+        let geometry: [Geometry; LANES] = std::array::from_fn(|j| Geometry::of_hit(&of(j).hit));
+        let ns = V3::gather(&std::array::from_fn(|j| geometry[j].n));
+        let dpdu = V3::gather(&std::array::from_fn(|j| geometry[j].dpdu));
+        let flip = ng.dot(dir).gt(f32x8::ZERO) & mask(&|h| h.two_sided);
+        let (ns, ng) = (V3::select(flip, -ns, ns), V3::select(flip, -ng, ng));
+        let ns = facing_lanes(ns, ng, wo);
+        let frame = FrameOf::from_normal_tangent(ns, dpdu);
+        let wo_local = frame.to_local(wo);
+
+        // Light sampling: the lights sampled per path, their BSDF values in lanes.
+        let lights: ArrayVec<Option<EmitterSample>, LANES> = batch
+            .iter()
+            .map(|h| {
+                let mut u = h.at.u_light;
+                let (u_pick, u) = (u.next_1d(), u.next_2d());
+                scene.emitters.sample(&scene.lights, h.hit.point, u_pick, u)
+            })
+            .collect();
+        let wi = V3::gather(&std::array::from_fn(|j| {
+            lights.get(j).copied().flatten().map_or(Vec3::Z, |s| s.wi)
+        }));
+        let (f_lanes, pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
+
+        // BSDF sampling's numbers, drawn as the scalar path draws them (the lobe's too).
+        let u_bsdf: ArrayVec<(f32, f32), LANES> = batch
+            .iter()
+            .map(|h| {
+                let mut u = h.at.u_bsdf;
+                u.next_1d();
+                let u = u.next_2d();
+                (u.x, u.y)
+            })
+            .collect();
+        let ux = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.0)));
+        let uy = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.1)));
+        let sampled = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
+
+        let (front, cos_over_pi) = f_lanes;
+        let (front, usable) = (front.to_bitmask(), sampled.0.to_bitmask());
+        let mut ended = 0;
+        for (j, h) in batch.iter().enumerate() {
+            let before = stats.untraceable;
+            let path = &mut paths[h.lane];
+            if let Some(s) = &lights[j] {
+                // Bsdf::eval's guard. (Scattering::eval_pdf adds this one part, of weight 1, to
+                // black: the same bits.)
+                let f = h.albedo * cos_over_pi.as_array()[j];
+                let f = if front & (1 << j) != 0 && f.is_finite() {
+                    f
+                } else {
+                    Rgb::BLACK
+                };
+                let light =
+                    light_through(scene, &h.hit, s, (f, pdf_lanes.as_array()[j]), true, stats);
+                path.l += path.beta * light;
+            }
+            let b = (usable & (1 << j) != 0).then(|| {
+                // Scattering::sample's sample of one part of weight 1: its weight and density
+                // times 1, the same bits.
+                let s = ScatteringSample {
+                    wi: sampled.1.lane(j),
+                    weight: h.albedo,
+                    pdf: sampled.2.as_array()[j],
+                    delta: false,
+                    reflected: true,
+                };
+                leave(&h.hit, s, stats)
+            });
+            if !self.go_on(path, b.flatten(), &h.hit, h.at.u_rr) {
+                ended |= 1 << h.lane;
+            }
+            if stats.untraceable != before {
+                *untraceable |= 1 << h.lane;
+            }
+        }
+        ended
+    }
+}
+
+/// For a light along world direction `wi`: where it reaches the front of a Lambertian part
+/// without leaking through the surface (the mask), `cos θi/π` — [`Scattering`]'s value without
+/// the albedo — and the part's density of sampling `wi` (0 where it leaks).
+///
+/// [`Scattering`]: crate::material::Scattering
+#[inline(always)]
+fn lambert_value_and_pdf(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    wo_local: V3<f32x8>,
+    wi: V3<f32x8>,
+) -> ((f32x8, f32x8), f32x8) {
+    let zero = f32x8::ZERO;
+    let local = frame.to_local(wi);
+    // Part::local: the shading and the geometric normal put wi on the same side.
+    let consistent = wi.dot(ng).gt(zero).same(local.z.gt(zero));
+    let (front, cos_over_pi) = lambert_eval(wo_local, local);
+    // Bsdf::pdf keeps only finite, positive densities (Scattering::eval_pdf's sum over one part
+    // of weight 1, divided by the total weight 1, gives the same bits).
+    let p = lambert_pdf(wo_local, local);
+    let usable = consistent & p.finite() & p.gt(zero);
+    let pdf = <f32x8 as Real>::select(usable, p, zero);
+    ((front & consistent, cos_over_pi), pdf)
+}
+
+/// The BSDF sample of a Lambertian part from `(ux, uy)`: where it is usable (the mask: above
+/// the surface, a positive finite density, not leaking through it), the world direction
+/// (normalised, as [`Scattering`] returns it) and its density.
+///
+/// [`Scattering`]: crate::material::Scattering
+#[inline(always)]
+fn lambert_bounce(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    wo: V3<f32x8>,
+    wo_local: V3<f32x8>,
+    (ux, uy): (f32x8, f32x8),
+) -> (f32x8, V3<f32x8>, f32x8) {
+    let zero = f32x8::ZERO;
+    let (ok, local, pdf) = lambert_sample(wo_local, ux, uy);
+    // Bsdf::sample's test of a useful sample (the albedo is finite and not black).
+    let finite = local.x.finite() & local.y.finite() & local.z.finite();
+    let useful = ok & pdf.gt(zero) & pdf.finite() & finite;
+    let wi = frame.to_world(local).normalize();
+    // Scattering::sample's leak test: the side the sample chose agrees with the geometric one.
+    let reflected = local.z.gt(zero).same(wo_local.z.gt(zero));
+    let same_side = wi.dot(ng).gt(zero).same(wo.dot(ng).gt(zero));
+    (useful & same_side.same(reflected), wi, pdf)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Camera;
+    use crate::light::Light;
+    use crate::light::point::{Falloff, PointLight};
+    use crate::material::Material;
+    use crate::scene::SceneBuilder;
+    use crate::shape::{Mesh, Sphere};
+
+    /// An open box of Lambertian walls (one two-sided, one seen from behind through the open
+    /// side), a Lambertian ball and a metal one, a rectangular light, a point light and a grey
+    /// sky: paths that go through lanes, per path, and between the two.
+    fn mixed_scene() -> Scene {
+        let camera = Camera::new(Vec3::new(0.2, 0.1, 3.5), Vec3::ZERO, Vec3::Y, 50.0, 16, 16);
+        let mut b = SceneBuilder::new(camera.unwrap());
+        b.background(Rgb::gray(0.3));
+        let white = b.material(Material::lambertian(Rgb::new(0.8, 0.7, 0.6)));
+        let red = b.material(Material {
+            two_sided: true,
+            ..Material::lambertian(Rgb::new(0.6, 0.05, 0.05))
+        });
+        let metal = b.material(
+            Material::physically_based(
+                Surface::Conductor {
+                    eta: Texture::from(0.2),
+                    k: Texture::from(3.0),
+                    specular: Texture::from(1.0),
+                    roughness: None,
+                },
+                &[],
+            )
+            .0,
+        );
+        let lamp = b.material(Material {
+            ke: Rgb::new(9.0, 8.0, 6.0),
+            ..Material::lambertian(Rgb::gray(0.5))
+        });
+        let quad = |c: [Vec3; 4]| Mesh::new(c.to_vec(), vec![[0, 1, 2], [0, 2, 3]]);
+        let (l, h) = (-1.0, 1.0);
+        b.mesh(
+            quad([
+                Vec3::new(l, l, l),
+                Vec3::new(h, l, l),
+                Vec3::new(h, l, h),
+                Vec3::new(l, l, h),
+            ]),
+            white,
+        );
+        b.mesh(
+            quad([
+                Vec3::new(l, l, l),
+                Vec3::new(l, h, l),
+                Vec3::new(h, h, l),
+                Vec3::new(h, l, l),
+            ]),
+            white,
+        );
+        b.mesh(
+            quad([
+                Vec3::new(l, l, l),
+                Vec3::new(l, l, h),
+                Vec3::new(l, h, h),
+                Vec3::new(l, h, l),
+            ]),
+            red,
+        );
+        b.mesh(
+            quad([
+                Vec3::new(h, l, l),
+                Vec3::new(h, h, l),
+                Vec3::new(h, h, h),
+                Vec3::new(h, l, h),
+            ]),
+            red,
+        );
+        let (a, c) = (-0.3, 0.3);
+        b.mesh(
+            quad([
+                Vec3::new(a, 0.99, a),
+                Vec3::new(c, 0.99, a),
+                Vec3::new(c, 0.99, c),
+                Vec3::new(a, 0.99, c),
+            ]),
+            lamp,
+        );
+        b.sphere(
+            Sphere {
+                center: Vec3::new(-0.4, -0.6, 0.1),
+                radius: 0.4,
+            },
+            white,
+        );
+        b.sphere(
+            Sphere {
+                center: Vec3::new(0.45, -0.65, -0.2),
+                radius: 0.35,
+            },
+            metal,
+        );
+        b.light(Light::Point(PointLight {
+            position: Vec3::new(0.5, 0.5, 0.8),
+            intensity: Rgb::gray(0.5),
+            falloff: Falloff::Quadratic,
+        }));
+        b.build().unwrap()
+    }
+
+    #[test]
+    fn lanes_give_the_scalar_paths_bits() {
+        let scene = mixed_scene();
+        let lanes = LaneMaterials::of(&scene);
+        assert!(lanes.any());
+        let tracer = PathTracer {
+            max_depth: 6,
+            rr_depth: 2,
+        };
+        let (w, h) = (scene.camera.width(), scene.camera.height());
+        let mut scalar_stats = RayStats::default();
+        let mut lane_stats = RayStats::default();
+        // Groups of every size from 1 to 8 (so that partial groups are covered).
+        let mut pixel = 0u64;
+        let mut shown = 0;
+        for size in (1..=LANES).cycle().take(400) {
+            let mut rays = ArrayVec::<Ray, LANES>::new();
+            let mut samplers = ArrayVec::<Sampler, LANES>::new();
+            for _ in 0..size {
+                let (x, y) = (
+                    (pixel % u64::from(w)) as u32,
+                    ((pixel / u64::from(w)) % u64::from(h)) as u32,
+                );
+                let s = (pixel / u64::from(w * h)) as u32;
+                let mut sampler = Sampler::new(3, pixel, s);
+                let u = sampler.next_2d();
+                sampler.defer(2);
+                rays.push(scene.camera.ray(x as f32 + u.x, y as f32 + u.y));
+                samplers.push(sampler);
+                pixel += 1;
+            }
+            let expected: Vec<Rgb> = rays
+                .iter()
+                .zip(samplers.clone())
+                .map(|(r, mut s)| tracer.radiance(&scene, r, &mut s, &mut scalar_stats))
+                .collect();
+            let got =
+                tracer.radiance_lanes(&scene, &lanes, None, &rays, &mut samplers, &mut lane_stats);
+            for (e, g) in expected.iter().zip(&got) {
+                let bits = |c: &Rgb| c.to_array().map(f32::to_bits);
+                assert_eq!(bits(e), bits(g), "expected {e:?}, got {g:?}");
+                shown += usize::from(!e.is_black());
+            }
+        }
+        assert_eq!(scalar_stats, lane_stats, "the same rays");
+        assert!(shown > 400, "only {shown} paths found light");
+        assert!(
+            scalar_stats.shadow > 1000 && scalar_stats.reflected > 1000,
+            "{scalar_stats:?}"
+        );
+    }
+}
