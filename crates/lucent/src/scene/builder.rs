@@ -7,10 +7,12 @@ use crate::camera::Camera;
 use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
 use crate::material::Material;
 use crate::motion::Motion;
-use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, SphereMap, Transform, TriangleTest};
+use crate::shape::{
+    Instance, Mesh, Plane, Primitive, Sphere, SphereMap, Transform, TriangleTest, triangle,
+};
 use crate::texture::ImageTexture;
 use crate::texture::image::LatLongTexels;
-use glam::Affine3A;
+use glam::{Affine3A, Vec3};
 use lucent_accel::{Aabb, AccelKind, WideTriangleBvh};
 use std::sync::Arc;
 use std::time::Instant;
@@ -676,6 +678,16 @@ fn merged(
     }
     let bounds = (0..world.triangles.len() as u32)
         .fold(Aabb::EMPTY, |a, t| a.union(world.triangle_bounds(t)));
+    let transformed = |(inst, _): &(Instance, ObjectTag)| inst.transform.is_some();
+    let normals = if instances
+        .iter()
+        .zip(merge)
+        .any(|(i, m)| *m && transformed(i))
+    {
+        placed_normals(meshes, instances, merge)
+    } else {
+        Vec::new()
+    };
     Ok(Some(Merged {
         entry: MeshEntry {
             accel: accel(&world),
@@ -688,7 +700,30 @@ fn merged(
             .map(|k| k as u32),
         owner,
         first,
+        normals,
     }))
+}
+
+/// The world normals of the merged triangles (see `Merged::normals`), in merged order.
+fn placed_normals(
+    meshes: &[MeshEntry],
+    instances: &[(Instance, ObjectTag)],
+    merge: &[bool],
+) -> Vec<Vec3> {
+    let mut normals = Vec::new();
+    for ((inst, _), _) in instances.iter().zip(merge).filter(|(_, m)| **m) {
+        let mesh = &meshes[inst.mesh as usize].mesh;
+        normals.extend(
+            (0..mesh.triangles.len() as u32).map(|tri| match inst.transform {
+                // As the surface query computes it from the object's corners.
+                Some(t) => {
+                    t.normal_to_world(triangle::normal(mesh.vertices(tri)).unwrap_or(Vec3::Z))
+                }
+                None => Vec3::ZERO,
+            }),
+        );
+    }
+    normals
 }
 
 /// What rays that miss the scene see: the environment light of the path tracer.

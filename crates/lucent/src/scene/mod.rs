@@ -85,6 +85,11 @@ struct Merged {
     /// The instance, when only one is merged (a scene of one mesh): its hits need no lookup
     /// in `owner`, which for a large mesh is a cache miss per hit.
     single: Option<u32>,
+    /// For each merged triangle of a placement with a transform, its world normal as the
+    /// surface query computes it (the object's face normal through the placement's normal
+    /// matrix; zero for the others); empty when no merged placement has a transform. The
+    /// Mitsuba scenes' rectangles and cubes are such placements.
+    normals: Vec<glam::Vec3>,
 }
 
 impl Merged {
@@ -105,6 +110,13 @@ impl Merged {
                 (k, i - self.first[k as usize])
             }
         }
+    }
+
+    /// The world normal of triangle `tri` of instance `k`, if it is merged with a transform.
+    #[inline]
+    fn normal(&self, k: u32, tri: u32) -> Option<glam::Vec3> {
+        let n = *self.normals.get(self.index(k, tri)? as usize)?;
+        (n != glam::Vec3::ZERO).then_some(n)
     }
 
     /// The instance of merged triangle `i`.
@@ -449,6 +461,7 @@ impl Scene {
             m.entry.mesh.positions.len() * 12
                 + m.entry.mesh.triangles.len() * 16
                 + m.first.len() * 4
+                + m.normals.len() * 12
         });
         meshes
             + merged

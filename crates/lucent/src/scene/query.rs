@@ -457,8 +457,19 @@ impl Scene {
                 let [b0, b1, b2] = hit.bary;
                 let here_error =
                     gamma(7) * ((b0 * v[0]).abs() + (b1 * v[1]).abs() + (b2 * v[2]).abs());
+                // A placed triangle's world normal, computed at build for merged placements
+                // (see `Merged::normals`): the same bits, without two square roots and
+                // divisions in a chain.
+                let placed_normal = (world && mesh.normals.is_empty())
+                    .then(|| self.merged.as_ref()?.normal(k, tri))
+                    .flatten();
                 // A triangle that was hit has an area, so its normal exists.
-                let local_normal = triangle::normal(object).unwrap_or(Vec3::Z);
+                let face_normal = || triangle::normal(object).unwrap_or(Vec3::Z);
+                let local_normal = match placed_normal {
+                    // Only the world normal is used below.
+                    Some(_) => Vec3::Z,
+                    None => face_normal(),
+                };
                 // Loaded only for the vertex attributes a mesh has: for incoherent rays it is a
                 // cache miss, which was a sixth of the surface's time on a mesh without them.
                 let corners = || mesh.triangles[tri as usize].map(|i| i as usize);
@@ -488,7 +499,7 @@ impl Scene {
                         .fold(Vec2::ZERO, |a, (&t, b)| a + b * t);
                     let tangents = if needs_tangents {
                         triangle::uv_tangents(object, corner_uvs)
-                            .unwrap_or_else(|| local_normal.any_orthonormal_pair())
+                            .unwrap_or_else(|| face_normal().any_orthonormal_pair())
                     } else {
                         (Vec3::ZERO, Vec3::ZERO)
                     };
@@ -510,7 +521,7 @@ impl Scene {
                 };
                 // Without vertex normals the shading normal is the face's: carried once.
                 let normals_to_world = |t: &crate::shape::Transform| {
-                    let normal = t.normal_to_world(local_normal);
+                    let normal = placed_normal.unwrap_or_else(|| t.normal_to_world(local_normal));
                     let shading = if mesh.normals.is_empty() {
                         normal
                     } else {
