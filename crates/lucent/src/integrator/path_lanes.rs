@@ -21,7 +21,6 @@ use crate::Rgb;
 use crate::bsdf::FrameOf;
 use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
 use crate::lanes::{LANES, Mask as _, Real, V3};
-use crate::light::EmitterSample;
 use crate::material::{Geometry, ScatteringSample, Surface, facing_lanes};
 use crate::sampling::sobol::Sampler;
 use crate::scene::{Beam, Scene};
@@ -205,31 +204,31 @@ impl PathTracer {
         let wo_local = frame.to_local(wo);
 
         // Light sampling: the lights sampled per path, their BSDF values in lanes.
-        let lights: ArrayVec<Option<EmitterSample>, LANES> = batch
-            .iter()
-            .map(|h| {
-                let mut u = h.at.u_light;
-                let (u_pick, u) = (u.next_1d(), u.next_2d());
-                scene.emitters.sample(&scene.lights, h.hit.point, u_pick, u)
-            })
-            .collect();
+        let mut samplers: ArrayVec<Sampler, LANES> = batch.iter().map(|h| h.at.u_light).collect();
+        let u_pick = Sampler::next_1d_lanes(&mut samplers);
+        let u_light = Sampler::next_2d_lanes(&mut samplers);
+        let points: ArrayVec<Vec3, LANES> = batch.iter().map(|h| h.hit.point).collect();
+        let lights = scene
+            .emitters
+            .sample_lanes(&scene.lights, &points, &u_pick, &u_light);
         let wi = V3::gather(&std::array::from_fn(|j| {
             lights.get(j).copied().flatten().map_or(Vec3::Z, |s| s.wi)
         }));
         let (f_lanes, pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
 
-        // BSDF sampling's numbers, drawn as the scalar path draws them (the lobe's too).
-        let u_bsdf: ArrayVec<(f32, f32), LANES> = batch
+        // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
+        // direction's drawn.
+        let mut samplers: ArrayVec<Sampler, LANES> = batch
             .iter()
             .map(|h| {
                 let mut u = h.at.u_bsdf;
-                u.next_1d();
-                let u = u.next_2d();
-                (u.x, u.y)
+                u.defer(1);
+                u
             })
             .collect();
-        let ux = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.0)));
-        let uy = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.1)));
+        let u_bsdf = Sampler::next_2d_lanes(&mut samplers);
+        let ux = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.x)));
+        let uy = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.y)));
         let sampled = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
 
         let (front, cos_over_pi) = f_lanes;

@@ -8,8 +8,9 @@
 //! uniformly over the cone of directions they cover, which wastes no sample on the far side.
 
 use crate::Rgb;
+use crate::lanes::{Real, V3};
 use crate::sampling::distribution::Distribution1D;
-use crate::sampling::warp::{square_to_uniform_cone, square_to_uniform_triangle};
+use crate::sampling::warp::{square_to_uniform_cone, uniform_triangle};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -113,27 +114,20 @@ impl AreaLights {
         match &light.shape {
             EmitterShape::Triangles { first, areas } => {
                 let (k, _, _) = areas.sample_discrete(u_pick);
-                let [a, b, c] = self.triangles[*first as usize + k];
-                let (b0, b1) = square_to_uniform_triangle(u);
-                let x = a * b0 + b * b1 + c * (1.0 - b0 - b1);
-                let n = self.normals[*first as usize + k];
-                let offset = x - p;
-                let d2 = offset.length_squared();
-                let distance = d2.sqrt();
-                if distance.is_nan() || distance <= 0.0 {
-                    return None;
-                }
-                let wi = offset / distance;
-                // The light's front must face p.
-                let cos_light = -n.dot(wi);
-                if cos_light.is_nan() || cos_light <= 0.0 {
-                    return None;
-                }
-                Some(EmitterSample {
-                    wi,
+                let t = *first as usize + k;
+                let [a, b, c] = self.triangles[t].map(V3::from);
+                let (ok, wi, distance, pdf) = triangle_light_sample(
+                    [a, b, c],
+                    self.normals[t].into(),
+                    p.into(),
+                    (u.x, u.y),
+                    light.area,
+                );
+                ok.then(|| EmitterSample {
+                    wi: wi.into(),
                     distance,
                     radiance: light.radiance,
-                    pdf: d2 / (cos_light * light.area),
+                    pdf,
                     delta: false,
                 })
             }
@@ -163,6 +157,22 @@ impl AreaLights {
                 })
             }
         }
+    }
+
+    /// The triangle that light `i` picks with `u_pick` ([`AreaLights::sample`]'s choice): its
+    /// index in [`AreaLights::triangles`]; `None` for a light that is not made of triangles.
+    pub(super) fn triangle_picked(&self, i: usize, u_pick: f32) -> Option<usize> {
+        match &self.lights[i].shape {
+            EmitterShape::Triangles { first, areas } => {
+                Some(*first as usize + areas.sample_discrete(u_pick).0)
+            }
+            EmitterShape::Sphere { .. } => None,
+        }
+    }
+
+    /// Triangle `t`'s corners and unit front normal.
+    pub(super) fn triangle(&self, t: usize) -> ([Vec3; 3], Vec3) {
+        (self.triangles[t], self.normals[t])
     }
 
     /// The solid-angle density with which [`AreaLights::sample`] picks the direction from `p`
@@ -218,6 +228,31 @@ pub fn triangle_area(t: &[Vec3; 3]) -> f32 {
 /// Rec. 709 luminance of a linear colour.
 pub fn luminance(c: Rgb) -> f32 {
     0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b
+}
+
+/// A point of a triangle light, seen from `p`, for any [`Real`] (written once for one path and
+/// for lanes): the triangle's corners, its unit front normal `n`, two uniform numbers, its
+/// light's whole area. Where the point is away from `p` and the front faces `p` (the mask), the
+/// unit direction to it, its distance and the solid-angle density `d²/(cos θ_light · A)`.
+#[inline(always)]
+pub fn triangle_light_sample<R: Real>(
+    [a, b, c]: [V3<R>; 3],
+    n: V3<R>,
+    p: V3<R>,
+    (ux, uy): (R, R),
+    area: R,
+) -> (R::Mask, V3<R>, R, R) {
+    let (b0, b1) = uniform_triangle(ux, uy);
+    let x = a * b0 + b * b1 + c * (R::splat(1.0) - b0 - b1);
+    let offset = x - p;
+    let d2 = offset.length_squared();
+    let distance = d2.sqrt();
+    let wi = offset / distance;
+    // The light's front must face p.
+    let cos_light = -n.dot(wi);
+    let zero = R::splat(0.0);
+    let ok = distance.gt(zero) & cos_light.gt(zero);
+    (ok, wi, distance, d2 / (cos_light * area))
 }
 
 #[cfg(test)]

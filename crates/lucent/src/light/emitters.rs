@@ -6,13 +6,16 @@
 //! picking the light, so that multiple importance sampling can weigh a light sample against a
 //! BSDF sample that found the same light ([`Emitters::pdf_area`], [`Emitters::pdf_environment`]).
 
-use super::area::{AreaLights, EmitterSample, luminance};
+use super::area::{AreaLights, EmitterSample, luminance, triangle_light_sample};
 use super::environment::EnvironmentLight;
 use super::{Light, spot::SpotLight};
 use crate::Rgb;
+use crate::lanes::{LANES, V3};
 use crate::sampling::distribution::Distribution1D;
+use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+use wide::f32x8;
 
 /// One light, as the picking distribution lists them ([`Emitters::pick`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -143,6 +146,66 @@ impl Emitters {
         (s.pdf > 0.0 && s.pdf.is_finite()).then_some(s)
     }
 
+    /// [`Emitters::sample`] for up to [`LANES`] points at once (`p[i]` with `u_pick[i]` and
+    /// `u[i]`): the same samples, bit for bit. The points of triangle lights are found in
+    /// lanes ([`triangle_light_sample`]), the other lights' per point.
+    pub fn sample_lanes(
+        &self,
+        delta: &[Light],
+        p: &[Vec3],
+        u_pick: &[f32],
+        u: &[Vec2],
+    ) -> ArrayVec<Option<EmitterSample>, LANES> {
+        let n = p.len();
+        assert!(n <= LANES && u_pick.len() == n && u.len() == n);
+        let mut out: ArrayVec<Option<EmitterSample>, LANES> = (0..n).map(|_| None).collect();
+        // (lane, area light, triangle, pick probability) of the lanes that picked a triangle.
+        let mut on_triangles = ArrayVec::<(usize, usize, usize, f32), LANES>::new();
+        for i in 0..n {
+            let Some((entry, pmf, u_rest)) = self.pick(u_pick[i]) else {
+                continue;
+            };
+            match entry {
+                Entry::Area(j) => match self.area.triangle_picked(j as usize, u_rest) {
+                    Some(t) => on_triangles.push((i, j as usize, t, pmf)),
+                    None => out[i] = self.sample(delta, p[i], u_pick[i], u[i]),
+                },
+                _ => out[i] = self.sample(delta, p[i], u_pick[i], u[i]),
+            }
+        }
+        if on_triangles.is_empty() {
+            return out;
+        }
+        // Lanes past those repeat the first; their results are not read.
+        let of = |k: usize| on_triangles[if k < on_triangles.len() { k } else { 0 }];
+        let corners: [([Vec3; 3], Vec3); LANES] =
+            std::array::from_fn(|k| self.area.triangle(of(k).2));
+        let corner = |c: usize| V3::gather(&std::array::from_fn(|k| corners[k].0[c]));
+        let lane = |f: &dyn Fn(usize) -> f32| f32x8::new(std::array::from_fn(f));
+        let (ok, wi, distance, pdf) = triangle_light_sample(
+            [corner(0), corner(1), corner(2)],
+            V3::gather(&std::array::from_fn(|k| corners[k].1)),
+            V3::gather(&std::array::from_fn(|k| p[of(k).0])),
+            (lane(&|k| u[of(k).0].x), lane(&|k| u[of(k).0].y)),
+            lane(&|k| self.area.lights[of(k).1].area),
+        );
+        let ok = ok.to_bitmask();
+        for (k, &(i, j, _, pmf)) in on_triangles.iter().enumerate() {
+            if ok & (1 << k) == 0 {
+                continue;
+            }
+            let s = EmitterSample {
+                wi: wi.lane(k),
+                distance: distance.as_array()[k],
+                radiance: self.area.lights[j].radiance,
+                pdf: pdf.as_array()[k] * pmf,
+                delta: false,
+            };
+            out[i] = (s.pdf > 0.0 && s.pdf.is_finite()).then_some(s);
+        }
+        out
+    }
+
     /// The density with which [`Emitters::sample`] reaches point `x` (geometric normal `n`)
     /// of area light `light` from `p`, picking included.
     pub fn pdf_area(&self, light: usize, p: Vec3, x: Vec3, n: Vec3) -> f32 {
@@ -177,5 +240,59 @@ fn delta_power(l: &Light, radius: f32) -> f32 {
         Light::Directional(d) => PI * radius * radius * luminance(d.intensity),
         Light::Photometric(l) => l.profile.total() * luminance(l.point.intensity),
         Light::Image(l) => luminance(l.power()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::point::{Falloff, PointLight};
+
+    #[test]
+    fn samples_in_lanes_are_the_samples_one_at_a_time() {
+        // Two triangle lights (one of two triangles), a sphere light and a point light, seen
+        // from points around them, some behind the lights.
+        let mut area = AreaLights::default();
+        let quad = [
+            [
+                Vec3::new(-1.0, 2.0, -1.0),
+                Vec3::new(1.0, 2.0, -1.0),
+                Vec3::new(1.0, 2.0, 1.0),
+            ],
+            [
+                Vec3::new(-1.0, 2.0, -1.0),
+                Vec3::new(1.0, 2.0, 1.0),
+                Vec3::new(-1.0, 2.0, 1.0),
+            ],
+        ];
+        area.add_triangles(0, Rgb::new(5.0, 4.0, 3.0), &quad);
+        area.add_triangles(1, Rgb::gray(2.0), &[[Vec3::X, Vec3::Y * 3.0, Vec3::Z]]);
+        area.add_sphere(2, Rgb::gray(1.0), Vec3::new(0.0, -3.0, 0.0), 0.5);
+        let delta = [Light::Point(PointLight {
+            position: Vec3::new(2.0, 1.0, 0.0),
+            intensity: Rgb::gray(3.0),
+            falloff: Falloff::Quadratic,
+        })];
+        let emitters = Emitters::new(&delta, area, None, 3, 5.0);
+        let mut seed = 1u64;
+        let mut next = || {
+            seed = crate::sampling::mix64(seed);
+            crate::sampling::to_unit_float(seed)
+        };
+        let mut found = 0;
+        for n in (1..=LANES).cycle().take(200) {
+            let p: Vec<Vec3> = (0..n)
+                .map(|_| Vec3::new(next() * 6.0 - 3.0, next() * 6.0 - 3.0, next() * 6.0 - 3.0))
+                .collect();
+            let u_pick: Vec<f32> = (0..n).map(|_| next()).collect();
+            let u: Vec<Vec2> = (0..n).map(|_| Vec2::new(next(), next())).collect();
+            let lanes = emitters.sample_lanes(&delta, &p, &u_pick, &u);
+            for i in 0..n {
+                let alone = emitters.sample(&delta, p[i], u_pick[i], u[i]);
+                assert_eq!(lanes[i], alone, "{:?} {} {:?}", p[i], u_pick[i], u[i]);
+                found += usize::from(alone.is_some());
+            }
+        }
+        assert!(found > 300, "{found}");
     }
 }

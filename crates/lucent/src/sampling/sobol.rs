@@ -24,7 +24,10 @@
 //! additions and multiplications do), applied to the bit-reversed value so that the most
 //! significant bits of the fraction decide the flips of the less significant ones.
 
+use arrayvec::ArrayVec;
 use glam::Vec2;
+
+use crate::lanes::LANES;
 
 use super::{hash, mix64, to_unit_float};
 
@@ -225,6 +228,68 @@ impl Sampler {
     }
 }
 
+/// Draws of many samplers at once: the lanes of one bounce, which stand at the same dimension.
+/// Each value is the one the sampler's own [`Sampler::next_1d`] or [`Sampler::next_2d`] gives;
+/// samplers of one pixel share their scrambling keys, which are then made once, and their
+/// indices are scrambled together (in a loop the compiler vectorises).
+impl Sampler {
+    /// [`Sampler::next_1d`] of each sampler.
+    pub fn next_1d_lanes(samplers: &mut [Sampler]) -> ArrayVec<f32, LANES> {
+        let Some(keys) = shared_keys(samplers) else {
+            return samplers.iter_mut().map(Sampler::next_1d).collect();
+        };
+        let (k0, k1) = (keys.key(0), keys.key(1));
+        let i = shuffled_lanes(samplers, k0);
+        let x: [u32; LANES] =
+            std::array::from_fn(|l| laine_karras_permute(i[l], k1).reverse_bits());
+        for s in samplers.iter_mut() {
+            s.dimension = s.dimension.wrapping_add(1);
+        }
+        x[..samplers.len()]
+            .iter()
+            .map(|&x| fraction_to_float(x))
+            .collect()
+    }
+
+    /// [`Sampler::next_2d`] of each sampler.
+    pub fn next_2d_lanes(samplers: &mut [Sampler]) -> ArrayVec<Vec2, LANES> {
+        let Some(keys) = shared_keys(samplers) else {
+            return samplers.iter_mut().map(Sampler::next_2d).collect();
+        };
+        let (k0, k1, k2) = (keys.key(0), keys.key(1), keys.key(2));
+        let i = shuffled_lanes(samplers, k0);
+        let x: [u32; LANES] =
+            std::array::from_fn(|l| laine_karras_permute(i[l], k1).reverse_bits());
+        let y: [u32; LANES] = std::array::from_fn(|l| {
+            laine_karras_permute(sobol_1_reversed(i[l]), k2).reverse_bits()
+        });
+        for s in samplers.iter_mut() {
+            s.dimension = s.dimension.wrapping_add(2);
+        }
+        (0..samplers.len())
+            .map(|l| Vec2::new(fraction_to_float(x[l]), fraction_to_float(y[l])))
+            .collect()
+    }
+}
+
+/// The first of `samplers` when all of them draw with the same keys (one pixel and seed, one
+/// dimension) and there are at most [`LANES`] of them.
+fn shared_keys(samplers: &[Sampler]) -> Option<Sampler> {
+    let first = *samplers.first()?;
+    let shared = samplers
+        .iter()
+        .all(|s| s.pixel_key == first.pixel_key && s.dimension == first.dimension);
+    (shared && samplers.len() <= LANES).then_some(first)
+}
+
+/// The shuffled indices of `samplers` (their draw's key `k0`), lanes past them 0.
+#[inline(always)]
+fn shuffled_lanes(samplers: &[Sampler], k0: u64) -> [u32; LANES] {
+    let reversed: [u32; LANES] =
+        std::array::from_fn(|l| samplers.get(l).map_or(0, |s| s.index_reversed));
+    std::array::from_fn(|l| laine_karras_permute(reversed[l], k0).reverse_bits())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -282,6 +347,31 @@ mod tests {
             let after = s.next_1d();
             assert_eq!(after, expected.2);
             assert_eq!((first.next_1d(), first.next_2d()), (expected.0, expected.1));
+        }
+    }
+
+    #[test]
+    fn draws_in_lanes_are_each_samplers_own() {
+        // Eight samples of one pixel (shared keys), and samples of several pixels (not).
+        let groups: [Vec<Sampler>; 3] = [
+            (0..8).map(|i| Sampler::new(9, 17, i)).collect(),
+            (0..5).map(|i| Sampler::new(9, 17, 40 + i)).collect(),
+            (0..8)
+                .map(|i| Sampler::new(9, 17 + u64::from(i % 3), i))
+                .collect(),
+        ];
+        for group in groups {
+            let mut lanes = group.clone();
+            let mut alone = group;
+            for _ in 0..4 {
+                let got = Sampler::next_1d_lanes(&mut lanes);
+                let want: Vec<f32> = alone.iter_mut().map(Sampler::next_1d).collect();
+                assert_eq!(got.as_slice(), want.as_slice());
+                let got = Sampler::next_2d_lanes(&mut lanes);
+                let want: Vec<Vec2> = alone.iter_mut().map(Sampler::next_2d).collect();
+                assert_eq!(got.as_slice(), want.as_slice());
+            }
+            assert_eq!(lanes, alone);
         }
     }
 

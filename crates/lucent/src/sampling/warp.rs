@@ -127,15 +127,18 @@ pub fn uniform_cone_pdf(cos_max: f32) -> f32 {
 /// squeezed linearly onto the triangle, which keeps strata compact, unlike the square-root
 /// method.
 pub fn square_to_uniform_triangle(u: Vec2) -> (f32, f32) {
+    uniform_triangle(u.x, u.y)
+}
+
+/// [`square_to_uniform_triangle`] for any [`Real`].
+#[inline(always)]
+pub fn uniform_triangle<R: Real>(ux: R, uy: R) -> (R, R) {
     // Each half of the square maps linearly with Jacobian 1/2 onto the triangle
     // {b0, b1 ≥ 0, b0 + b1 ≤ 1} of area 1/2: uniform.
-    if u.x < u.y {
-        let b0 = 0.5 * u.x;
-        (b0, u.y - b0)
-    } else {
-        let b1 = 0.5 * u.y;
-        (u.x - b1, b1)
-    }
+    let half = R::splat(0.5);
+    let below = ux.lt(uy);
+    let (b0, b1) = (half * ux, half * uy);
+    (R::select(below, b0, ux - b1), R::select(below, uy - b0, b1))
 }
 
 /// χ² goodness-of-fit tests for the sampling tests of this crate.
