@@ -30,34 +30,31 @@ use lucent_accel::Ray;
 
 /// Which of a scene's materials the lanes shade, and how.
 #[derive(Clone, Debug, Default)]
-pub struct LaneMaterials {
-    /// Per material: the constant Lambertian it is, if it is one.
-    lambert: Vec<Option<Lambertian>>,
+pub struct LaneMaterials<'a> {
+    /// Per material: the Lambertian it is, if it is one.
+    lambert: Vec<Option<Lambertian<'a>>>,
 }
 
-/// A constant Lambertian material, as lanes shade it.
+/// A Lambertian material, as lanes shade it.
 #[derive(Clone, Copy, Debug)]
-struct Lambertian {
-    albedo: Rgb,
+struct Lambertian<'a> {
+    /// Its hemispherical reflectance.
+    reflectance: &'a Texture,
     /// Whether the hit's vertex colour multiplies the albedo.
     vertex_colors: bool,
     two_sided: bool,
 }
 
-impl LaneMaterials {
-    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`) of
-    /// one finite, non-negative, non-black colour. Any other material is shaded per path.
-    pub fn of(scene: &Scene) -> Self {
-        let usable =
-            |c: &Rgb| c.is_finite() && !c.is_black() && c.to_array().iter().all(|&v| v >= 0.0);
+impl<'a> LaneMaterials<'a> {
+    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`),
+    /// their albedo a colour or a texture. Any other material is shaded per path.
+    pub fn of(scene: &'a Scene) -> Self {
         let lambert = scene
             .materials
             .iter()
             .map(|m| match &m.surface {
-                Surface::Diffuse {
-                    reflectance: Texture::Solid(c),
-                } if usable(c) => Some(Lambertian {
-                    albedo: *c,
+                Surface::Diffuse { reflectance } => Some(Lambertian {
+                    reflectance,
                     vertex_colors: m.vertex_colors,
                     two_sided: m.two_sided,
                 }),
@@ -89,7 +86,7 @@ impl PathTracer {
     pub fn radiance_lanes(
         &self,
         scene: &Scene,
-        lanes: &LaneMaterials,
+        lanes: &LaneMaterials<'_>,
         beam: Option<&Beam>,
         rays: &[Ray],
         samplers: &mut [Sampler],
@@ -124,16 +121,9 @@ impl PathTracer {
                         .flatten()
                     {
                         Some(m) => {
-                            // The leaf's albedo as Resolve makes it: times the vertex colour
-                            // (the hit's, white on shapes without) where the material says.
-                            let color = if m.vertex_colors {
-                                hit.color
-                            } else {
-                                Rgb::WHITE
-                            };
                             batch.push(LambertHit {
                                 lane,
-                                albedo: m.albedo * color,
+                                albedo: albedo_at(scene, m, &hit, at.footprint),
                                 two_sided: m.two_sided,
                                 hit,
                                 at,
@@ -250,7 +240,10 @@ impl PathTracer {
                     light_through(scene, &h.hit, s, (f, pdf_lanes.as_array()[j]), true, stats);
                 path.l += path.beta * light;
             }
-            let b = (usable & (1 << j) != 0).then(|| {
+            // Lambert::sample and Bsdf::sample: no sample of a black albedo, nor of one that is
+            // not finite.
+            let useful = h.albedo.is_finite() && !h.albedo.is_black();
+            let b = (useful && usable & (1 << j) != 0).then(|| {
                 // Scattering::sample's sample of one part of weight 1: its weight and density
                 // times 1, the same bits.
                 let s = ScatteringSample {
@@ -270,6 +263,25 @@ impl PathTracer {
             }
         }
         ended
+    }
+}
+
+/// The albedo of Lambertian material `m` at `hit` as `Resolve` makes it (the texture at the
+/// hit's coordinates, over `footprint`), times the vertex colour (the hit's, white on shapes
+/// without) where the material says.
+#[inline(always)]
+fn albedo_at(scene: &Scene, m: Lambertian, hit: &SurfaceHit, footprint: f32) -> Rgb {
+    let c = match m.reflectance {
+        Texture::Solid(c) => *c,
+        t => {
+            let material = &scene.materials[hit.material as usize];
+            t.eval(&scene.tex_coords(material, hit, footprint), &scene.images)
+        }
+    };
+    c * if m.vertex_colors {
+        hit.color
+    } else {
+        Rgb::WHITE
     }
 }
 
@@ -341,6 +353,16 @@ mod tests {
         let mut b = SceneBuilder::new(camera.unwrap());
         b.background(Rgb::gray(0.3));
         let white = b.material(Material::lambertian(Rgb::new(0.8, 0.7, 0.6)));
+        let checker = b.material(Material {
+            surface: Surface::Diffuse {
+                reflectance: Texture::Checker(crate::texture::checker::Checker {
+                    even: Rgb::new(0.9, 0.8, 0.1),
+                    odd: Rgb::BLACK,
+                    size: 0.3,
+                }),
+            },
+            ..Material::default()
+        });
         let red = b.material(Material {
             two_sided: true,
             ..Material::lambertian(Rgb::new(0.6, 0.05, 0.05))
@@ -370,7 +392,7 @@ mod tests {
                 Vec3::new(h, l, h),
                 Vec3::new(l, l, h),
             ]),
-            white,
+            checker,
         );
         b.mesh(
             quad([

@@ -15,17 +15,17 @@ use crate::scene::{Beam, Scene};
 
 /// How a tile's camera samples are traced. `T` is what the caller needs to add a sample's value
 /// to its film (its pixel, its weight).
-pub(super) struct Tracing<T> {
+pub(super) struct Tracing<'a, T> {
     /// The path tracer and the materials its lanes shade, when samples go through lanes.
-    lanes: Option<(PathTracer, LaneMaterials)>,
+    lanes: Option<(PathTracer, LaneMaterials<'a>)>,
     pending: ArrayVec<(Ray, Sampler, T), LANES>,
 }
 
-impl<T> Tracing<T> {
+impl<'a, T> Tracing<'a, T> {
     /// Lanes when the settings allow them ([`RenderSettings::lanes`]), the integrator is the
     /// path tracer, every sample sees the scene at one instant (no motion blur), and lanes shade
     /// some of its materials; else one sample at a time.
-    pub fn new(scene: &Scene, settings: &RenderSettings) -> Self {
+    pub fn new(scene: &'a Scene, settings: &RenderSettings) -> Self {
         let lanes = match settings.integrator {
             Integrator::Path(tracer) if settings.lanes && !scene.blurs() => {
                 let materials = LaneMaterials::of(scene);
