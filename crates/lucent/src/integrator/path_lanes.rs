@@ -83,7 +83,46 @@ struct LambertHit {
 impl PathTracer {
     /// [`PathTracer::radiance_in`] for up to [`LANES`] camera rays at once (`samplers[i]` is
     /// ray `i`'s): the same radiance for each, bit for bit.
+    ///
+    /// On a processor with AVX2 the lanes' code is compiled for it (eight lanes a register,
+    /// the Sobol scrambles' multiplications in vectors); the arithmetic is the same IEEE
+    /// arithmetic (no fused multiply–adds), so the bits are the same either way.
     pub fn radiance_lanes(
+        &self,
+        scene: &Scene,
+        lanes: &LaneMaterials<'_>,
+        beam: Option<&Beam>,
+        rays: &[Ray],
+        samplers: &mut [Sampler],
+        stats: &mut RayStats,
+    ) -> ArrayVec<Rgb, LANES> {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: `radiance_lanes_avx2` is compiled for AVX2, which the processor has.
+            #[allow(unsafe_code)]
+            return unsafe { self.radiance_lanes_avx2(scene, lanes, beam, rays, samplers, stats) };
+        }
+        self.radiance_lanes_with(scene, lanes, beam, rays, samplers, stats)
+    }
+
+    /// [`PathTracer::radiance_lanes`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn radiance_lanes_avx2(
+        &self,
+        scene: &Scene,
+        lanes: &LaneMaterials<'_>,
+        beam: Option<&Beam>,
+        rays: &[Ray],
+        samplers: &mut [Sampler],
+        stats: &mut RayStats,
+    ) -> ArrayVec<Rgb, LANES> {
+        self.radiance_lanes_with(scene, lanes, beam, rays, samplers, stats)
+    }
+
+    /// The body of [`PathTracer::radiance_lanes`], inlined into each instruction set's version.
+    #[inline(always)]
+    fn radiance_lanes_with(
         &self,
         scene: &Scene,
         lanes: &LaneMaterials<'_>,
@@ -161,6 +200,7 @@ impl PathTracer {
     /// frames, the light samples' BSDF values and densities and the BSDF samples in lanes, the
     /// light and shadow rays, the bounces and Russian roulette per path. Returns the lanes whose
     /// paths ended; marks in `untraceable` those that met a ray they could not trace.
+    #[inline(always)]
     fn scatter_lambert(
         &self,
         scene: &Scene,
@@ -489,11 +529,23 @@ mod tests {
                 .zip(samplers.clone())
                 .map(|(r, mut s)| tracer.radiance(&scene, r, &mut s, &mut scalar_stats))
                 .collect();
+            // As the processor runs it (with AVX2 where it has it), and in the baseline
+            // instruction set.
+            let mut baseline = samplers.clone();
             let got =
                 tracer.radiance_lanes(&scene, &lanes, None, &rays, &mut samplers, &mut lane_stats);
-            for (e, g) in expected.iter().zip(&got) {
+            let got_baseline = tracer.radiance_lanes_with(
+                &scene,
+                &lanes,
+                None,
+                &rays,
+                &mut baseline,
+                &mut RayStats::default(),
+            );
+            for ((e, g), b) in expected.iter().zip(&got).zip(&got_baseline) {
                 let bits = |c: &Rgb| c.to_array().map(f32::to_bits);
                 assert_eq!(bits(e), bits(g), "expected {e:?}, got {g:?}");
+                assert_eq!(bits(e), bits(b), "expected {e:?}, got {b:?} (baseline)");
                 shown += usize::from(!e.is_black());
             }
         }

@@ -149,6 +149,7 @@ impl Emitters {
     /// [`Emitters::sample`] for up to [`LANES`] points at once (`p[i]` with `u_pick[i]` and
     /// `u[i]`): the same samples, bit for bit. The points of triangle lights are found in
     /// lanes ([`triangle_light_sample`]), the other lights' per point.
+    #[inline(always)]
     pub fn sample_lanes(
         &self,
         delta: &[Light],

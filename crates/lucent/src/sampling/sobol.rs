@@ -234,6 +234,7 @@ impl Sampler {
 /// indices are scrambled together (in a loop the compiler vectorises).
 impl Sampler {
     /// [`Sampler::next_1d`] of each sampler.
+    #[inline(always)]
     pub fn next_1d_lanes(samplers: &mut [Sampler]) -> ArrayVec<f32, LANES> {
         let Some(keys) = shared_keys(samplers) else {
             return samplers.iter_mut().map(Sampler::next_1d).collect();
@@ -252,6 +253,7 @@ impl Sampler {
     }
 
     /// [`Sampler::next_2d`] of each sampler.
+    #[inline(always)]
     pub fn next_2d_lanes(samplers: &mut [Sampler]) -> ArrayVec<Vec2, LANES> {
         let Some(keys) = shared_keys(samplers) else {
             return samplers.iter_mut().map(Sampler::next_2d).collect();
