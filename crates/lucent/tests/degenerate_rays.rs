@@ -75,6 +75,38 @@ fn rays_that_overflow_at_a_far_wall_end_their_paths_and_are_counted() {
     }
 }
 
+/// The far wall of the test above, Lambertian, under the path tracer: paths traced in lanes meet
+/// the untraceable rays, end and are dropped as paths traced one at a time are.
+#[test]
+fn paths_in_lanes_drop_the_samples_of_untraceable_rays_as_single_paths_do() {
+    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 40.0, 4, 4).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    let m = b.material(Material::lambertian(Rgb::gray(0.5)));
+    b.plane(
+        Plane::new(Vec3::new(0.0, 0.0, -3e38), Vec3::new(0.0, 0.0, 1.0)),
+        m,
+    );
+    b.light(Light::Point(PointLight {
+        position: Vec3::new(0.0, 1.0, 0.0),
+        intensity: Rgb::WHITE,
+        falloff: Falloff::None,
+    }));
+    let scene = b.build().unwrap();
+    let render = |lanes| {
+        let settings = RenderSettings {
+            integrator: Integrator::Path(PathTracer::default()),
+            spp: 9,
+            lanes,
+            ..RenderSettings::default()
+        };
+        common::render_all(&scene, &settings)
+    };
+    let (alone, in_lanes) = (render(false), render(true));
+    assert!(alone.stats.rays.untraceable > 0 && alone.stats.rays.nonfinite > 0);
+    assert_eq!(in_lanes.stats.rays, alone.stats.rays);
+    assert_eq!(in_lanes.film, alone.film);
+}
+
 /// Renders `scene` at 2 spp under each integrator, asserts that every pixel is finite, and
 /// returns each render's ray counts.
 fn renders_with_finite_pixels(scene: &Scene, integrators: &[Integrator]) -> Vec<RayStats> {
