@@ -48,23 +48,10 @@ fn a_degenerate_lens_drops_and_counts_every_sample() {
 /// that no pixel is NaN and nothing is drawn as if the light were blocked.
 #[test]
 fn rays_that_overflow_at_a_far_wall_end_their_paths_and_are_counted() {
-    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 40.0, 4, 4).unwrap();
-    let mut b = SceneBuilder::new(camera);
-    let wall = Material {
+    let scene = far_wall(Material {
         kr: Rgb::gray(0.5),
         ..Material::diffuse(Rgb::gray(0.5))
-    };
-    let m = b.material(wall);
-    b.plane(
-        Plane::new(Vec3::new(0.0, 0.0, -3e38), Vec3::new(0.0, 0.0, 1.0)),
-        m,
-    );
-    b.light(Light::Point(PointLight {
-        position: Vec3::new(0.0, 1.0, 0.0),
-        intensity: Rgb::WHITE,
-        falloff: Falloff::None,
-    }));
-    let scene = b.build().unwrap();
+    });
     let integrators = [
         Integrator::Whitted(Whitted::default()),
         Integrator::Path(PathTracer::default()),
@@ -79,19 +66,7 @@ fn rays_that_overflow_at_a_far_wall_end_their_paths_and_are_counted() {
 /// the untraceable rays, end and are dropped as paths traced one at a time are.
 #[test]
 fn paths_in_lanes_drop_the_samples_of_untraceable_rays_as_single_paths_do() {
-    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 40.0, 4, 4).unwrap();
-    let mut b = SceneBuilder::new(camera);
-    let m = b.material(Material::lambertian(Rgb::gray(0.5)));
-    b.plane(
-        Plane::new(Vec3::new(0.0, 0.0, -3e38), Vec3::new(0.0, 0.0, 1.0)),
-        m,
-    );
-    b.light(Light::Point(PointLight {
-        position: Vec3::new(0.0, 1.0, 0.0),
-        intensity: Rgb::WHITE,
-        falloff: Falloff::None,
-    }));
-    let scene = b.build().unwrap();
+    let scene = far_wall(Material::lambertian(Rgb::gray(0.5)));
     let render = |lanes| {
         let settings = RenderSettings {
             integrator: Integrator::Path(PathTracer::default()),
@@ -105,6 +80,23 @@ fn paths_in_lanes_drop_the_samples_of_untraceable_rays_as_single_paths_do() {
     assert!(alone.stats.rays.untraceable > 0 && alone.stats.rays.nonfinite > 0);
     assert_eq!(in_lanes.stats.rays, alone.stats.rays);
     assert_eq!(in_lanes.film, alone.film);
+}
+
+/// A wall of `material` 3·10³⁸ in front of a 4 × 4 camera, lit by a point light.
+fn far_wall(material: Material) -> Scene {
+    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 40.0, 4, 4).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    let m = b.material(material);
+    b.plane(
+        Plane::new(Vec3::new(0.0, 0.0, -3e38), Vec3::new(0.0, 0.0, 1.0)),
+        m,
+    );
+    b.light(Light::Point(PointLight {
+        position: Vec3::new(0.0, 1.0, 0.0),
+        intensity: Rgb::WHITE,
+        falloff: Falloff::None,
+    }));
+    b.build().unwrap()
 }
 
 /// Renders `scene` at 2 spp under each integrator, asserts that every pixel is finite, and

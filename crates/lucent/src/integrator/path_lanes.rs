@@ -424,53 +424,21 @@ mod tests {
             ..Material::lambertian(Rgb::gray(0.5))
         });
         let quad = |c: [Vec3; 4]| Mesh::new(c.to_vec(), vec![[0, 1, 2], [0, 2, 3]]);
-        let (l, h) = (-1.0, 1.0);
-        b.mesh(
-            quad([
-                Vec3::new(l, l, l),
-                Vec3::new(h, l, l),
-                Vec3::new(h, l, h),
-                Vec3::new(l, l, h),
-            ]),
-            checker,
-        );
-        b.mesh(
-            quad([
-                Vec3::new(l, l, l),
-                Vec3::new(l, h, l),
-                Vec3::new(h, h, l),
-                Vec3::new(h, l, l),
-            ]),
-            white,
-        );
-        b.mesh(
-            quad([
-                Vec3::new(l, l, l),
-                Vec3::new(l, l, h),
-                Vec3::new(l, h, h),
-                Vec3::new(l, h, l),
-            ]),
-            red,
-        );
-        b.mesh(
-            quad([
-                Vec3::new(h, l, l),
-                Vec3::new(h, h, l),
-                Vec3::new(h, h, h),
-                Vec3::new(h, l, h),
-            ]),
-            red,
-        );
-        let (a, c) = (-0.3, 0.3);
-        b.mesh(
-            quad([
-                Vec3::new(a, 0.99, a),
-                Vec3::new(c, 0.99, a),
-                Vec3::new(c, 0.99, c),
-                Vec3::new(a, 0.99, c),
-            ]),
-            lamp,
-        );
+        let v = Vec3::new;
+        let (l, h, a, c) = (-1.0, 1.0, -0.3, 0.3);
+        let walls = [
+            ([v(l, l, l), v(h, l, l), v(h, l, h), v(l, l, h)], checker),
+            ([v(l, l, l), v(l, h, l), v(h, h, l), v(h, l, l)], white),
+            ([v(l, l, l), v(l, l, h), v(l, h, h), v(l, h, l)], red),
+            ([v(h, l, l), v(h, h, l), v(h, h, h), v(h, l, h)], red),
+            (
+                [v(a, 0.99, a), v(c, 0.99, a), v(c, 0.99, c), v(a, 0.99, c)],
+                lamp,
+            ),
+        ];
+        for (corners, material) in walls {
+            b.mesh(quad(corners), material);
+        }
         b.sphere(
             Sphere {
                 center: Vec3::new(-0.4, -0.6, 0.1),
