@@ -18,8 +18,8 @@ use super::path::{Arrival, Path, PathTracer};
 use super::vertex::{leave, light_through};
 use super::{RayStats, UNTRACEABLE};
 use crate::Rgb;
-use crate::bsdf::FrameOf;
 use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
+use crate::bsdf::{FrameOf, fresnel};
 use crate::lanes::{LANES, Mask as _, Real, V3};
 use crate::material::{Geometry, ScatteringSample, Surface, facing_lanes};
 use crate::sampling::sobol::Sampler;
@@ -31,52 +31,83 @@ use lucent_accel::Ray;
 /// Which of a scene's materials the lanes shade, and how.
 #[derive(Clone, Debug, Default)]
 pub struct LaneMaterials<'a> {
-    /// Per material: the Lambertian it is, if it is one.
-    lambert: Vec<Option<Lambertian<'a>>>,
+    /// Per material: how lanes shade it, if they do.
+    lanes: Vec<Option<LaneMaterial<'a>>>,
 }
 
-/// A Lambertian material, as lanes shade it.
+/// A material as lanes shade it.
 #[derive(Clone, Copy, Debug)]
-struct Lambertian<'a> {
-    /// Its hemispherical reflectance.
-    reflectance: &'a Texture,
-    /// Whether the hit's vertex colour multiplies the albedo.
+struct LaneMaterial<'a> {
+    surface: LaneSurface<'a>,
+    /// Whether the hit's vertex colour multiplies a Lambertian albedo.
     vertex_colors: bool,
     two_sided: bool,
 }
 
+/// The surfaces lanes know, with their textures.
+#[derive(Clone, Copy, Debug)]
+enum LaneSurface<'a> {
+    /// Lambertian (Mitsuba's `diffuse`).
+    Lambert { reflectance: &'a Texture },
+    /// A smooth conductor (Mitsuba's `conductor`).
+    Mirror {
+        eta: &'a Texture,
+        k: &'a Texture,
+        specular: &'a Texture,
+    },
+}
+
+/// What a lane's surface is at its hit, textures evaluated.
+#[derive(Clone, Copy, Debug)]
+enum LaneBsdf {
+    /// Lambert's albedo.
+    Lambert(Rgb),
+    /// A smooth conductor's index and tint.
+    Mirror { eta: Rgb, k: Rgb, specular: Rgb },
+}
+
 impl<'a> LaneMaterials<'a> {
-    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`),
-    /// their albedo a colour or a texture. Any other material is shaded per path.
+    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`) and
+    /// smooth conductors (`conductor`), their parameters colours or textures. Any other
+    /// material is shaded per path.
     pub fn of(scene: &'a Scene) -> Self {
-        let lambert = scene
+        let lanes = scene
             .materials
             .iter()
-            .map(|m| match &m.surface {
-                Surface::Diffuse { reflectance } => Some(Lambertian {
-                    reflectance,
+            .map(|m| {
+                let surface = match &m.surface {
+                    Surface::Diffuse { reflectance } => LaneSurface::Lambert { reflectance },
+                    Surface::Conductor {
+                        eta,
+                        k,
+                        specular,
+                        roughness: None,
+                    } => LaneSurface::Mirror { eta, k, specular },
+                    _ => return None,
+                };
+                Some(LaneMaterial {
+                    surface,
                     vertex_colors: m.vertex_colors,
                     two_sided: m.two_sided,
-                }),
-                _ => None,
+                })
             })
             .collect();
-        Self { lambert }
+        Self { lanes }
     }
 
     /// Whether lanes shade any material of the scene.
     pub fn any(&self) -> bool {
-        self.lambert.iter().any(Option::is_some)
+        self.lanes.iter().any(Option::is_some)
     }
 }
 
-/// A path of a lane group that arrived at a Lambertian surface this bounce.
-struct LambertHit {
+/// A path of a lane group that arrived at a surface lanes know this bounce.
+struct LaneHit {
     /// Its lane.
     lane: usize,
     hit: SurfaceHit,
     at: Arrival,
-    albedo: Rgb,
+    bsdf: LaneBsdf,
     two_sided: bool,
 }
 
@@ -142,7 +173,7 @@ impl PathTracer {
         // Lanes whose path met a ray it could not trace: their estimate is dropped.
         let mut untraceable = 0u32;
         while alive != 0 {
-            let mut batch = ArrayVec::<LambertHit, LANES>::new();
+            let mut batch = ArrayVec::<LaneHit, LANES>::new();
             let bounce_alive = alive;
             for lane in (0..n).filter(|&i| bounce_alive & (1 << i) != 0) {
                 let before = stats.untraceable;
@@ -154,15 +185,15 @@ impl PathTracer {
                     sampler,
                     stats,
                     |path, hit, at, stats| match lanes
-                        .lambert
+                        .lanes
                         .get(hit.material as usize)
                         .copied()
                         .flatten()
                     {
                         Some(m) => {
-                            batch.push(LambertHit {
+                            batch.push(LaneHit {
                                 lane,
-                                albedo: albedo_at(scene, m, &hit, at.footprint),
+                                bsdf: bsdf_at(scene, m, &hit, at.footprint),
                                 two_sided: m.two_sided,
                                 hit,
                                 at,
@@ -180,7 +211,7 @@ impl PathTracer {
                 }
             }
             if !batch.is_empty() {
-                alive &= !self.scatter_lambert(scene, &batch, &mut paths, &mut untraceable, stats);
+                alive &= !self.scatter_lanes(scene, &batch, &mut paths, &mut untraceable, stats);
             }
         }
         paths
@@ -196,15 +227,15 @@ impl PathTracer {
             .collect()
     }
 
-    /// The scatter of every path in `batch` (all at constant Lambertian surfaces): the shading
-    /// frames, the light samples' BSDF values and densities and the BSDF samples in lanes, the
-    /// light and shadow rays, the bounces and Russian roulette per path. Returns the lanes whose
-    /// paths ended; marks in `untraceable` those that met a ray they could not trace.
+    /// The scatter of every path in `batch`: the shading frames, the light samples' BSDF values
+    /// and densities and the BSDF samples in lanes; the lights picked, the shadow rays, the
+    /// bounces and Russian roulette per path. Returns the lanes whose paths ended; marks in
+    /// `untraceable` those that met a ray they could not trace.
     #[inline(always)]
-    fn scatter_lambert(
+    fn scatter_lanes(
         &self,
         scene: &Scene,
-        batch: &[LambertHit],
+        batch: &[LaneHit],
         paths: &mut [Path],
         untraceable: &mut u32,
         stats: &mut RayStats,
@@ -212,13 +243,13 @@ impl PathTracer {
         let k = batch.len();
         // Lanes past the batch repeat its first path; their results are not read.
         let of = |j: usize| &batch[if j < k { j } else { 0 }];
-        let vec = |f: &dyn Fn(&LambertHit) -> Vec3| V3::gather(&std::array::from_fn(|j| f(of(j))));
-        let mask = |f: &dyn Fn(&LambertHit) -> bool| {
+        let vec = |f: &dyn Fn(&LaneHit) -> Vec3| V3::gather(&std::array::from_fn(|j| f(of(j))));
+        let mask = |f: &dyn Fn(&LaneHit) -> bool| {
             let bits: [u32; LANES] = std::array::from_fn(|j| if f(of(j)) { !0 } else { 0 });
             wide::bytemuck::cast::<[u32; LANES], f32x8>(bits)
         };
 
-        // The part Resolve makes of a Lambertian leaf (material/scattering.rs): seen from the
+        // The part Resolve makes of a reflecting leaf (material/scattering.rs): seen from the
         // back, a two-sided surface turns its normals round; the shading normal then faces
         // the viewer ([`crate::material::facing`]), the frame follows ∂p/∂u.
         let dir = vec(&|h| paths[h.lane].ray.dir);
@@ -233,69 +264,100 @@ impl PathTracer {
         let frame = FrameOf::from_normal_tangent(ns, dpdu);
         let wo_local = frame.to_local(wo);
 
-        // Light sampling: the lights sampled per path, their BSDF values in lanes.
-        let mut samplers: ArrayVec<Sampler, LANES> = batch.iter().map(|h| h.at.u_light).collect();
+        // Light sampling, where the surface is not a mirror (whose Dirac lobe no light sample
+        // can meet): the lights sampled per path, their BSDF values in lanes.
+        let diffuse: ArrayVec<usize, LANES> = (0..k)
+            .filter(|&j| matches!(batch[j].bsdf, LaneBsdf::Lambert(_)))
+            .collect();
+        let mut samplers: ArrayVec<Sampler, LANES> =
+            diffuse.iter().map(|&j| batch[j].at.u_light).collect();
         let u_pick = Sampler::next_1d_lanes(&mut samplers);
         let u_light = Sampler::next_2d_lanes(&mut samplers);
-        let points: ArrayVec<Vec3, LANES> = batch.iter().map(|h| h.hit.point).collect();
-        let lights = scene
+        let points: ArrayVec<Vec3, LANES> = diffuse.iter().map(|&j| batch[j].hit.point).collect();
+        let mut lights = [None; LANES];
+        let sampled = scene
             .emitters
             .sample_lanes(&scene.lights, &points, &u_pick, &u_light);
+        for (&j, s) in diffuse.iter().zip(sampled) {
+            lights[j] = s;
+        }
         let wi = V3::gather(&std::array::from_fn(|j| {
-            lights.get(j).copied().flatten().map_or(Vec3::Z, |s| s.wi)
+            lights[j].map_or(Vec3::Z, |s| s.wi)
         }));
-        let (f_lanes, pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
+        let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
 
         // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
-        // direction's drawn.
-        let mut samplers: ArrayVec<Sampler, LANES> = batch
+        // direction's drawn (a mirror draws none).
+        let mut samplers: ArrayVec<Sampler, LANES> = diffuse
             .iter()
-            .map(|h| {
-                let mut u = h.at.u_bsdf;
+            .map(|&j| {
+                let mut u = batch[j].at.u_bsdf;
                 u.defer(1);
                 u
             })
             .collect();
-        let u_bsdf = Sampler::next_2d_lanes(&mut samplers);
-        let ux = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.x)));
-        let uy = f32x8::new(std::array::from_fn(|j| u_bsdf.get(j).map_or(0.5, |u| u.y)));
-        let sampled = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
+        let mut u_bsdf = [(0.5, 0.5); LANES];
+        for (&j, u) in diffuse.iter().zip(Sampler::next_2d_lanes(&mut samplers)) {
+            u_bsdf[j] = (u.x, u.y);
+        }
+        let ux = f32x8::new(std::array::from_fn(|j| u_bsdf[j].0));
+        let uy = f32x8::new(std::array::from_fn(|j| u_bsdf[j].1));
+        let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
+        let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
 
-        let (front, cos_over_pi) = f_lanes;
-        let (front, usable) = (front.to_bitmask(), sampled.0.to_bitmask());
+        let (front, cosine_ok, mirror_ok) = (
+            front.to_bitmask(),
+            cosine_ok.to_bitmask(),
+            mirror_ok.to_bitmask(),
+        );
         let mut ended = 0;
         for (j, h) in batch.iter().enumerate() {
             let before = stats.untraceable;
             let path = &mut paths[h.lane];
-            if let Some(s) = &lights[j] {
-                // Bsdf::eval's guard. (Scattering::eval_pdf adds this one part, of weight 1, to
-                // black: the same bits.)
-                let f = h.albedo * cos_over_pi.as_array()[j];
-                let f = if front & (1 << j) != 0 && f.is_finite() {
-                    f
-                } else {
-                    Rgb::BLACK
-                };
-                let light =
-                    light_through(scene, &h.hit, s, (f, pdf_lanes.as_array()[j]), true, stats);
-                path.l += path.beta * light;
-            }
-            // Lambert::sample and Bsdf::sample: no sample of a black albedo, nor of one that is
-            // not finite.
-            let useful = h.albedo.is_finite() && !h.albedo.is_black();
-            let b = (useful && usable & (1 << j) != 0).then(|| {
-                // Scattering::sample's sample of one part of weight 1: its weight and density
-                // times 1, the same bits.
-                let s = ScatteringSample {
-                    wi: sampled.1.lane(j),
-                    weight: h.albedo,
-                    pdf: sampled.2.as_array()[j],
-                    delta: false,
-                    reflected: true,
-                };
-                leave(&h.hit, s, stats)
-            });
-            if !self.go_on(path, b.flatten(), &h.hit, h.at.u_rr) {
+            let on = |bits: u32| bits & (1 << j) != 0;
+            let sample = match h.bsdf {
+                LaneBsdf::Lambert(albedo) => {
+                    if let Some(s) = &lights[j] {
+                        // Bsdf::eval's guard. (Scattering::eval_pdf adds this one part, of
+                        // weight 1, to black: the same bits.)
+                        let f = albedo * cos_over_pi.as_array()[j];
+                        let f = if on(front) && f.is_finite() {
+                            f
+                        } else {
+                            Rgb::BLACK
+                        };
+                        let pdf = pdf_lanes.as_array()[j];
+                        let light = light_through(scene, &h.hit, s, (f, pdf), true, stats);
+                        path.l += path.beta * light;
+                    }
+                    // Lambert::sample and Bsdf::sample: no sample of a black albedo, nor of
+                    // one that is not finite. Scattering::sample's sample of one part of weight
+                    // 1: its weight and density times 1, the same bits.
+                    let useful = albedo.is_finite() && !albedo.is_black();
+                    (useful && on(cosine_ok)).then(|| ScatteringSample {
+                        wi: cosine_wi.lane(j),
+                        weight: albedo,
+                        pdf: cosine_pdf.as_array()[j],
+                        delta: false,
+                        reflected: true,
+                    })
+                }
+                LaneBsdf::Mirror { eta, k, specular } => {
+                    // Conductor::sample: the tint times the Fresnel reflectance at the
+                    // viewer's cosine; Bsdf::sample keeps a finite weight that is not black.
+                    let weight = specular * fresnel::conductor(wo_local.z.as_array()[j], eta, k);
+                    let useful = weight.is_finite() && !weight.is_black();
+                    (useful && on(mirror_ok)).then(|| ScatteringSample {
+                        wi: mirror_wi.lane(j),
+                        weight,
+                        pdf: 1.0,
+                        delta: true,
+                        reflected: true,
+                    })
+                }
+            };
+            let b = sample.and_then(|s| leave(&h.hit, s, stats));
+            if !self.go_on(path, b, &h.hit, h.at.u_rr) {
                 ended |= 1 << h.lane;
             }
             if stats.untraceable != before {
@@ -306,23 +368,54 @@ impl PathTracer {
     }
 }
 
-/// The albedo of Lambertian material `m` at `hit` as `Resolve` makes it (the texture at the
-/// hit's coordinates, over `footprint`), times the vertex colour (the hit's, white on shapes
-/// without) where the material says.
+/// What material `m` is at `hit`, its textures evaluated as `Resolve` evaluates them (at the
+/// hit's coordinates, over `footprint`); a Lambertian albedo times the vertex colour (the
+/// hit's, white on shapes without) where the material says.
 #[inline(always)]
-fn albedo_at(scene: &Scene, m: Lambertian, hit: &SurfaceHit, footprint: f32) -> Rgb {
-    let c = match m.reflectance {
+fn bsdf_at(scene: &Scene, m: LaneMaterial, hit: &SurfaceHit, footprint: f32) -> LaneBsdf {
+    let eval = |t: &Texture| match t {
         Texture::Solid(c) => *c,
         t => {
             let material = &scene.materials[hit.material as usize];
             t.eval(&scene.tex_coords(material, hit, footprint), &scene.images)
         }
     };
-    c * if m.vertex_colors {
-        hit.color
-    } else {
-        Rgb::WHITE
+    match m.surface {
+        LaneSurface::Lambert { reflectance } => {
+            let color = if m.vertex_colors {
+                hit.color
+            } else {
+                Rgb::WHITE
+            };
+            LaneBsdf::Lambert(eval(reflectance) * color)
+        }
+        LaneSurface::Mirror { eta, k, specular } => LaneBsdf::Mirror {
+            eta: eval(eta),
+            k: eval(k),
+            specular: eval(specular),
+        },
     }
+}
+
+/// The mirror direction of a smooth conductor: where it is usable (the mask: the viewer above
+/// the surface, and the reflection not leaking through it), the world direction (normalised, as
+/// [`Scattering`] returns it).
+///
+/// [`Scattering`]: crate::material::Scattering
+#[inline(always)]
+fn mirror_bounce(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    wo: V3<f32x8>,
+    wo_local: V3<f32x8>,
+) -> (f32x8, V3<f32x8>) {
+    let zero = f32x8::ZERO;
+    let local = V3::new(-wo_local.x, -wo_local.y, wo_local.z);
+    let finite = local.x.finite() & local.y.finite() & local.z.finite();
+    let wi = frame.to_world(local).normalize();
+    // Scattering::sample's leak test: a reflection stays on the viewer's side.
+    let same_side = wi.dot(ng).gt(zero).same(wo.dot(ng).gt(zero));
+    (wo_local.z.gt(zero) & finite & same_side, wi)
 }
 
 /// For a light along world direction `wi`: where it reaches the front of a Lambertian part
