@@ -239,7 +239,7 @@ pub enum Bsdf<'a> {
     /// normalised Phong lobe `ks` of exponent `shininess`, a mirror `kr` and a refraction `kt`
     /// through index `eta` (reflecting on total internal reflection). The coefficients are used
     /// as given, without Fresnel; materials scale them to sum to at most 1 before they get here
-    /// ([`crate::material::Material::bsdf`]).
+    /// (`Material::classic_bsdf`).
     Classic {
         /// Diffuse coefficient.
         kd: Rgb,

@@ -1,12 +1,13 @@
 //! Paths in lanes: the path tracer run on up to eight paths at once, bounce by bounce, with the
-//! shading of the surfaces that lanes know ([`LaneMaterials`]: constant Lambertian ones, for
-//! now) done for all of them together in [`wide::f32x8`] lanes, and everything else per path
-//! by the scalar path tracer's own steps ([`PathTracer::arrive`], the scalar scatter,
-//! [`light_through`], [`leave`], [`PathTracer::go_on`]).
+//! shading of the surfaces that lanes know ([`LaneMaterials`]: Lambertian surfaces, any albedo
+//! texture, and smooth conductors) done for all of them together in [`wide::f32x8`] lanes, and
+//! everything else per path by the scalar path tracer's own steps (`PathTracer::arrive`, the
+//! scalar scatter, [`light_through`], [`leave`], `PathTracer::go_on`).
 //!
-//! The lane code is the scalar code: the shading frame, Lambert's value, density and sample and
-//! the facing test are written once over [`Real`] and run at `f32` by the scalar path
-//! tracer. A path traced in a lane therefore gets exactly the bits it gets alone — the test
+//! The lane code is the scalar code: the shading frame, Lambert's value, density and sample, the
+//! facing test, a triangle light's sample and the Sobol scrambles are written once (over
+//! [`Real`], or as loops over lanes) and run by the scalar path tracer too. A path traced in a
+//! lane therefore gets exactly the bits it gets alone — the test
 //! `lanes_give_the_scalar_paths_bits` holds the two to that — and an image is the same with
 //! lanes or without, on any number of threads.
 

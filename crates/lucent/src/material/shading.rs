@@ -108,7 +108,7 @@ pub fn facing(ns: Vec3, ng: Vec3, wo: Vec3) -> Vec3 {
     }
 }
 
-/// [`facing`] for eight lanes: the same test in every lane, the turn ([`tilted`]) lane by lane
+/// [`facing`] for eight lanes: the same test in every lane, the turn (`tilted`) lane by lane
 /// where it is needed, so that each lane has the scalar's bits.
 #[inline(always)]
 pub fn facing_lanes(ns: V3<f32x8>, ng: V3<f32x8>, wo: V3<f32x8>) -> V3<f32x8> {

@@ -113,7 +113,7 @@ impl Scene {
 
     /// Calls `blocker(hit)` for each surface, nearest first, that stops `ray` (leaving `from`)
     /// before `t_max`, until it returns `true`; returns whether it did. Cut-away crossings are
-    /// skipped; after [`MAX_CROSSINGS`] surfaces the walk gives up and answers `true`. (The
+    /// skipped; after `MAX_CROSSINGS` surfaces the walk gives up and answers `true`. (The
     /// ordered walk of the shadow rays of integrators that weigh each blocker, where
     /// [`Scene::occlusion`] cannot see opacity.)
     pub fn stopping_surfaces<F>(
