@@ -1,6 +1,6 @@
 //! Paths in lanes: the path tracer run on up to eight paths at once, bounce by bounce, with the
 //! shading of the surfaces that lanes know ([`LaneMaterials`]: Lambertian surfaces, any albedo
-//! texture, and smooth conductors) done for all of them together in [`wide::f32x8`] lanes, and
+//! texture, smooth conductors and smooth glass) done for all of them together in [`wide::f32x8`] lanes, and
 //! everything else per path by the scalar path tracer's own steps (`PathTracer::arrive`, the
 //! scalar scatter, [`light_through`], [`leave`], `PathTracer::go_on`).
 //!
@@ -12,7 +12,7 @@
 //! lanes or without, on any number of threads.
 
 use arrayvec::ArrayVec;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use wide::f32x8;
 
 use super::path::{Arrival, Path, PathTracer};
@@ -20,7 +20,7 @@ use super::vertex::{leave, light_through};
 use super::{RayStats, UNTRACEABLE};
 use crate::Rgb;
 use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
-use crate::bsdf::{FrameOf, fresnel};
+use crate::bsdf::{Bsdf, FrameOf, Transport, fresnel};
 use crate::lanes::{LANES, Mask as _, Real, V3};
 use crate::material::{Geometry, ScatteringSample, Surface, facing_lanes};
 use crate::sampling::sobol::Sampler;
@@ -56,6 +56,12 @@ enum LaneSurface<'a> {
         k: &'a Texture,
         specular: &'a Texture,
     },
+    /// Smooth glass (Mitsuba's `dielectric`).
+    Glass {
+        eta: f32,
+        specular: &'a Texture,
+        transmittance: &'a Texture,
+    },
 }
 
 /// What a lane's surface is at its hit, textures evaluated.
@@ -65,11 +71,18 @@ enum LaneBsdf {
     Lambert(Rgb),
     /// A smooth conductor's index and tint.
     Mirror { eta: Rgb, k: Rgb, specular: Rgb },
+    /// Smooth glass's index and tints.
+    Glass {
+        eta: f32,
+        specular: Rgb,
+        transmittance: Rgb,
+    },
 }
 
 impl<'a> LaneMaterials<'a> {
-    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`) and
-    /// smooth conductors (`conductor`), their parameters colours or textures. Any other
+    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`),
+    /// smooth conductors (`conductor`) and smooth glass (`dielectric`), their parameters
+    /// colours or textures. Any other
     /// material is shaded per path.
     pub fn of(scene: &'a Scene) -> Self {
         let lanes = scene
@@ -84,6 +97,16 @@ impl<'a> LaneMaterials<'a> {
                         specular,
                         roughness: None,
                     } => LaneSurface::Mirror { eta, k, specular },
+                    Surface::Dielectric {
+                        eta,
+                        specular,
+                        transmittance,
+                        roughness: None,
+                    } => LaneSurface::Glass {
+                        eta: *eta,
+                        specular,
+                        transmittance,
+                    },
                     _ => return None,
                 };
                 Some(LaneMaterial {
@@ -250,8 +273,8 @@ impl PathTracer {
             wide::bytemuck::cast::<[u32; LANES], f32x8>(bits)
         };
 
-        // The part Resolve makes of a reflecting leaf (material/scattering.rs): seen from the
-        // back, a two-sided surface turns its normals round; the shading normal then faces
+        // The part Resolve makes of a leaf (material/scattering.rs): seen from the back, a
+        // two-sided reflector turns its normals round (glass, which transmits, does not); the shading normal then faces
         // the viewer ([`crate::material::facing`]), the frame follows ∂p/∂u.
         let dir = vec(&|h| paths[h.lane].ray.dir);
         let wo = -dir;
@@ -259,7 +282,8 @@ impl PathTracer {
         let geometry: [Geometry; LANES] = std::array::from_fn(|j| Geometry::of_hit(&of(j).hit));
         let ns = V3::gather(&std::array::from_fn(|j| geometry[j].n));
         let dpdu = V3::gather(&std::array::from_fn(|j| geometry[j].dpdu));
-        let flip = ng.dot(dir).gt(f32x8::ZERO) & mask(&|h| h.two_sided);
+        let flip = ng.dot(dir).gt(f32x8::ZERO)
+            & mask(&|h| h.two_sided && !matches!(h.bsdf, LaneBsdf::Glass { .. }));
         let (ns, ng) = (V3::select(flip, -ns, ns), V3::select(flip, -ng, ng));
         let ns = facing_lanes(ns, ng, wo);
         let frame = FrameOf::from_normal_tangent(ns, dpdu);
@@ -305,6 +329,17 @@ impl PathTracer {
         let uy = f32x8::new(std::array::from_fn(|j| u_bsdf[j].1));
         let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
         let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
+        // Glass picks reflection or refraction with the lobe's number (its direction's
+        // numbers are not used).
+        let glass: ArrayVec<usize, LANES> = (0..k)
+            .filter(|&j| matches!(batch[j].bsdf, LaneBsdf::Glass { .. }))
+            .collect();
+        let mut samplers: ArrayVec<Sampler, LANES> =
+            glass.iter().map(|&j| batch[j].at.u_bsdf).collect();
+        let mut u_lobe = [0.0; LANES];
+        for (&j, u) in glass.iter().zip(Sampler::next_1d_lanes(&mut samplers)) {
+            u_lobe[j] = u;
+        }
 
         let (front, cosine_ok, mirror_ok) = (
             front.to_bitmask(),
@@ -342,6 +377,25 @@ impl PathTracer {
                         delta: false,
                         reflected: true,
                     })
+                }
+                LaneBsdf::Glass {
+                    eta,
+                    specular,
+                    transmittance,
+                } => {
+                    let frame = FrameOf {
+                        s: V3::from(frame.s.lane(j)),
+                        t: V3::from(frame.t.lane(j)),
+                        n: V3::from(frame.n.lane(j)),
+                    };
+                    let wo_local = wo_local.lane(j);
+                    let (wo, ng) = (wo.lane(j), ng.lane(j));
+                    glass_sample(
+                        frame,
+                        (wo, wo_local, ng),
+                        u_lobe[j],
+                        (eta, specular, transmittance),
+                    )
                 }
                 LaneBsdf::Mirror { eta, k, specular } => {
                     // Conductor::sample: the tint times the Fresnel reflectance at the
@@ -395,7 +449,46 @@ fn bsdf_at(scene: &Scene, m: LaneMaterial, hit: &SurfaceHit, footprint: f32) -> 
             k: eval(k),
             specular: eval(specular),
         },
+        LaneSurface::Glass {
+            eta,
+            specular,
+            transmittance,
+        } => LaneBsdf::Glass {
+            eta,
+            specular: eval(specular),
+            transmittance: eval(transmittance),
+        },
     }
+}
+
+/// Smooth glass's sample in one lane, as `Scattering::sample` draws it from its one part of
+/// weight 1: the lobe's number rescaled to the part (itself, clamped below 1), the scalar
+/// BSDF's sample in the frame, the direction in the world, and the leak test; the weight and
+/// density times 1, the same bits.
+#[inline(always)]
+fn glass_sample(
+    frame: FrameOf<f32>,
+    (wo, wo_local, ng): (Vec3, Vec3, Vec3),
+    u_lobe: f32,
+    (eta, specular, transmittance): (f32, Rgb, Rgb),
+) -> Option<ScatteringSample> {
+    let u_part = u_lobe.clamp(0.0, 1.0 - f32::EPSILON);
+    let bsdf = Bsdf::Dielectric {
+        eta,
+        specular,
+        transmittance,
+    };
+    let s = bsdf.sample(wo_local, u_part, Vec2::ZERO, Transport::Radiance)?;
+    let wi: Vec3 = frame.to_world(s.wi.into()).normalize().into();
+    let reflected = (s.wi.z > 0.0) == (wo_local.z > 0.0);
+    let same_side = (wi.dot(ng) > 0.0) == (wo.dot(ng) > 0.0);
+    (same_side == reflected).then_some(ScatteringSample {
+        wi,
+        weight: s.weight,
+        pdf: s.pdf,
+        delta: s.delta,
+        reflected,
+    })
 }
 
 /// The mirror direction of a smooth conductor: where it is usable (the mask: the viewer above
@@ -480,7 +573,7 @@ mod tests {
     use crate::shape::{Mesh, Sphere};
 
     /// An open box of Lambertian walls (one two-sided, one seen from behind through the open
-    /// side), a Lambertian ball and a metal one, a rectangular light, a point light and a grey
+    /// side), a Lambertian ball, a metal one and a glass one, a rectangular light, a point light and a grey
     /// sky: paths that go through lanes, per path, and between the two.
     fn mixed_scene() -> Scene {
         let camera = Camera::new(Vec3::new(0.2, 0.1, 3.5), Vec3::ZERO, Vec3::Y, 50.0, 16, 16);
@@ -507,6 +600,18 @@ mod tests {
                     eta: Texture::from(0.2),
                     k: Texture::from(3.0),
                     specular: Texture::from(1.0),
+                    roughness: None,
+                },
+                &[],
+            )
+            .0,
+        );
+        let glass = b.material(
+            Material::physically_based(
+                Surface::Dielectric {
+                    eta: 1.5,
+                    specular: Texture::from(1.0),
+                    transmittance: Texture::from(Rgb::new(0.9, 1.0, 0.95)),
                     roughness: None,
                 },
                 &[],
@@ -546,6 +651,13 @@ mod tests {
                 radius: 0.35,
             },
             metal,
+        );
+        b.sphere(
+            Sphere {
+                center: Vec3::new(0.1, -0.1, 0.5),
+                radius: 0.25,
+            },
+            glass,
         );
         b.light(Light::Point(PointLight {
             position: Vec3::new(0.5, 0.5, 0.8),
