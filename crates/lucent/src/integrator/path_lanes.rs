@@ -1,8 +1,9 @@
 //! Paths in lanes: the path tracer run on up to eight paths at once, bounce by bounce, with the
 //! shading of the surfaces that lanes know ([`LaneMaterials`]: Lambertian surfaces, any albedo
-//! texture, smooth conductors and smooth glass) done for all of them together in [`wide::f32x8`] lanes, and
-//! everything else per path by the scalar path tracer's own steps (`PathTracer::arrive`, the
-//! scalar scatter, [`light_through`], [`leave`], `PathTracer::go_on`).
+//! texture, smooth conductors and smooth glass) done for all of them together in
+//! [`wide::f32x8`] lanes, and everything else per path by the scalar path tracer's own steps
+//! (`PathTracer::arrive`, the scalar scatter, [`light_through`], [`leave`],
+//! `PathTracer::go_on`).
 //!
 //! The lane code is the scalar code: the shading frame, Lambert's value, density and sample, the
 //! facing test, a triangle light's sample and the Sobol scrambles are written once (over
