@@ -1,0 +1,294 @@
+//! The scatter of a lane group's paths at the surfaces lanes know: frames, light samples' BSDF
+//! values and densities and BSDF samples in lanes; lights picked, shadow rays, bounces and
+//! Russian roulette per path.
+
+use arrayvec::ArrayVec;
+use glam::{Vec2, Vec3};
+use wide::f32x8;
+
+use super::LaneHit;
+use super::surfaces::LaneBsdf;
+use crate::Rgb;
+use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
+use crate::bsdf::{Bsdf, FrameOf, Transport, fresnel};
+use crate::integrator::RayStats;
+use crate::integrator::path::{Path, PathTracer};
+use crate::integrator::vertex::{leave, light_through};
+use crate::lanes::{LANES, Mask as _, Real, V3};
+use crate::material::{Geometry, ScatteringSample, facing_lanes};
+use crate::sampling::sobol::Sampler;
+use crate::scene::Scene;
+
+impl PathTracer {
+    /// The scatter of every path in `batch`: the shading frames, the light samples' BSDF values
+    /// and densities and the BSDF samples in lanes; the lights picked, the shadow rays, the
+    /// bounces and Russian roulette per path. Returns the lanes whose paths ended; marks in
+    /// `untraceable` those that met a ray they could not trace.
+    #[inline(always)]
+    pub(super) fn scatter_lanes(
+        &self,
+        scene: &Scene,
+        batch: &[LaneHit],
+        paths: &mut [Path],
+        untraceable: &mut u32,
+        stats: &mut RayStats,
+    ) -> u32 {
+        let k = batch.len();
+        // Lanes past the batch repeat its first path; their results are not read.
+        let of = |j: usize| &batch[if j < k { j } else { 0 }];
+        let vec = |f: &dyn Fn(&LaneHit) -> Vec3| V3::gather(&std::array::from_fn(|j| f(of(j))));
+        let mask = |f: &dyn Fn(&LaneHit) -> bool| {
+            let bits: [u32; LANES] = std::array::from_fn(|j| if f(of(j)) { !0 } else { 0 });
+            wide::bytemuck::cast::<[u32; LANES], f32x8>(bits)
+        };
+
+        // The part Resolve makes of a leaf (material/scattering.rs): seen from the back, a
+        // two-sided reflector turns its normals round (glass, which transmits, does not); the shading normal then faces
+        // the viewer ([`crate::material::facing`]), the frame follows ∂p/∂u.
+        let dir = vec(&|h| paths[h.lane].ray.dir);
+        let wo = -dir;
+        let ng = vec(&|h| h.hit.normal);
+        let geometry: [Geometry; LANES] = std::array::from_fn(|j| Geometry::of_hit(&of(j).hit));
+        let ns = V3::gather(&std::array::from_fn(|j| geometry[j].n));
+        let dpdu = V3::gather(&std::array::from_fn(|j| geometry[j].dpdu));
+        let flip = ng.dot(dir).gt(f32x8::ZERO)
+            & mask(&|h| h.two_sided && !matches!(h.bsdf, LaneBsdf::Glass { .. }));
+        let (ns, ng) = (V3::select(flip, -ns, ns), V3::select(flip, -ng, ng));
+        let ns = facing_lanes(ns, ng, wo);
+        let frame = FrameOf::from_normal_tangent(ns, dpdu);
+        let wo_local = frame.to_local(wo);
+
+        // Light sampling, where the surface is not a mirror (whose Dirac lobe no light sample
+        // can meet): the lights sampled per path, their BSDF values in lanes.
+        let diffuse: ArrayVec<usize, LANES> = (0..k)
+            .filter(|&j| matches!(batch[j].bsdf, LaneBsdf::Lambert(_)))
+            .collect();
+        let mut samplers: ArrayVec<Sampler, LANES> =
+            diffuse.iter().map(|&j| batch[j].at.u_light).collect();
+        let u_pick = Sampler::next_1d_lanes(&mut samplers);
+        let u_light = Sampler::next_2d_lanes(&mut samplers);
+        let points: ArrayVec<Vec3, LANES> = diffuse.iter().map(|&j| batch[j].hit.point).collect();
+        let mut lights = [None; LANES];
+        let sampled = scene
+            .emitters
+            .sample_lanes(&scene.lights, &points, &u_pick, &u_light);
+        for (&j, s) in diffuse.iter().zip(sampled) {
+            lights[j] = s;
+        }
+        let wi = V3::gather(&std::array::from_fn(|j| {
+            lights[j].map_or(Vec3::Z, |s| s.wi)
+        }));
+        let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
+
+        // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
+        // direction's drawn (a mirror draws none).
+        let mut samplers: ArrayVec<Sampler, LANES> = diffuse
+            .iter()
+            .map(|&j| {
+                let mut u = batch[j].at.u_bsdf;
+                u.defer(1);
+                u
+            })
+            .collect();
+        let mut u_bsdf = [(0.5, 0.5); LANES];
+        for (&j, u) in diffuse.iter().zip(Sampler::next_2d_lanes(&mut samplers)) {
+            u_bsdf[j] = (u.x, u.y);
+        }
+        let ux = f32x8::new(std::array::from_fn(|j| u_bsdf[j].0));
+        let uy = f32x8::new(std::array::from_fn(|j| u_bsdf[j].1));
+        let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
+        let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
+        // Glass picks reflection or refraction with the lobe's number (its direction's
+        // numbers are not used).
+        let glass: ArrayVec<usize, LANES> = (0..k)
+            .filter(|&j| matches!(batch[j].bsdf, LaneBsdf::Glass { .. }))
+            .collect();
+        let mut samplers: ArrayVec<Sampler, LANES> =
+            glass.iter().map(|&j| batch[j].at.u_bsdf).collect();
+        let mut u_lobe = [0.0; LANES];
+        for (&j, u) in glass.iter().zip(Sampler::next_1d_lanes(&mut samplers)) {
+            u_lobe[j] = u;
+        }
+
+        let (front, cosine_ok, mirror_ok) = (
+            front.to_bitmask(),
+            cosine_ok.to_bitmask(),
+            mirror_ok.to_bitmask(),
+        );
+        let mut ended = 0;
+        for (j, h) in batch.iter().enumerate() {
+            let before = stats.untraceable;
+            let path = &mut paths[h.lane];
+            let on = |bits: u32| bits & (1 << j) != 0;
+            let sample = match h.bsdf {
+                LaneBsdf::Lambert(albedo) => {
+                    if let Some(s) = &lights[j] {
+                        // Bsdf::eval's guard. (Scattering::eval_pdf adds this one part, of
+                        // weight 1, to black: the same bits.)
+                        let f = albedo * cos_over_pi.as_array()[j];
+                        let f = if on(front) && f.is_finite() {
+                            f
+                        } else {
+                            Rgb::BLACK
+                        };
+                        let pdf = pdf_lanes.as_array()[j];
+                        let light = light_through(scene, &h.hit, s, (f, pdf), true, stats);
+                        path.l += path.beta * light;
+                    }
+                    // Lambert::sample and Bsdf::sample: no sample of a black albedo, nor of
+                    // one that is not finite. Scattering::sample's sample of one part of weight
+                    // 1: its weight and density times 1, the same bits.
+                    let useful = albedo.is_finite() && !albedo.is_black();
+                    (useful && on(cosine_ok)).then(|| ScatteringSample {
+                        wi: cosine_wi.lane(j),
+                        weight: albedo,
+                        pdf: cosine_pdf.as_array()[j],
+                        delta: false,
+                        reflected: true,
+                    })
+                }
+                LaneBsdf::Glass {
+                    eta,
+                    specular,
+                    transmittance,
+                } => {
+                    let frame = FrameOf {
+                        s: V3::from(frame.s.lane(j)),
+                        t: V3::from(frame.t.lane(j)),
+                        n: V3::from(frame.n.lane(j)),
+                    };
+                    let wo_local = wo_local.lane(j);
+                    let (wo, ng) = (wo.lane(j), ng.lane(j));
+                    glass_sample(
+                        frame,
+                        (wo, wo_local, ng),
+                        u_lobe[j],
+                        (eta, specular, transmittance),
+                    )
+                }
+                LaneBsdf::Mirror { eta, k, specular } => {
+                    // Conductor::sample: the tint times the Fresnel reflectance at the
+                    // viewer's cosine; Bsdf::sample keeps a finite weight that is not black.
+                    let weight = specular * fresnel::conductor(wo_local.z.as_array()[j], eta, k);
+                    let useful = weight.is_finite() && !weight.is_black();
+                    (useful && on(mirror_ok)).then(|| ScatteringSample {
+                        wi: mirror_wi.lane(j),
+                        weight,
+                        pdf: 1.0,
+                        delta: true,
+                        reflected: true,
+                    })
+                }
+            };
+            let b = sample.and_then(|s| leave(&h.hit, s, stats));
+            if !self.go_on(path, b, &h.hit, h.at.u_rr) {
+                ended |= 1 << h.lane;
+            }
+            if stats.untraceable != before {
+                *untraceable |= 1 << h.lane;
+            }
+        }
+        ended
+    }
+}
+
+/// Smooth glass's sample in one lane, as `Scattering::sample` draws it from its one part of
+/// weight 1: the lobe's number rescaled to the part (itself, clamped below 1), the scalar
+/// BSDF's sample in the frame, the direction in the world, and the leak test; the weight and
+/// density times 1, the same bits.
+#[inline(always)]
+fn glass_sample(
+    frame: FrameOf<f32>,
+    (wo, wo_local, ng): (Vec3, Vec3, Vec3),
+    u_lobe: f32,
+    (eta, specular, transmittance): (f32, Rgb, Rgb),
+) -> Option<ScatteringSample> {
+    let u_part = u_lobe.clamp(0.0, 1.0 - f32::EPSILON);
+    let bsdf = Bsdf::Dielectric {
+        eta,
+        specular,
+        transmittance,
+    };
+    let s = bsdf.sample(wo_local, u_part, Vec2::ZERO, Transport::Radiance)?;
+    let wi: Vec3 = frame.to_world(s.wi.into()).normalize().into();
+    let reflected = (s.wi.z > 0.0) == (wo_local.z > 0.0);
+    let same_side = (wi.dot(ng) > 0.0) == (wo.dot(ng) > 0.0);
+    (same_side == reflected).then_some(ScatteringSample {
+        wi,
+        weight: s.weight,
+        pdf: s.pdf,
+        delta: s.delta,
+        reflected,
+    })
+}
+
+/// The mirror direction of a smooth conductor: where it is usable (the mask: the viewer above
+/// the surface, and the reflection not leaking through it), the world direction (normalised, as
+/// [`Scattering`] returns it).
+///
+/// [`Scattering`]: crate::material::Scattering
+#[inline(always)]
+fn mirror_bounce(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    wo: V3<f32x8>,
+    wo_local: V3<f32x8>,
+) -> (f32x8, V3<f32x8>) {
+    let zero = f32x8::ZERO;
+    let local = V3::new(-wo_local.x, -wo_local.y, wo_local.z);
+    let finite = local.x.finite() & local.y.finite() & local.z.finite();
+    let wi = frame.to_world(local).normalize();
+    // Scattering::sample's leak test: a reflection stays on the viewer's side.
+    let same_side = wi.dot(ng).gt(zero).same(wo.dot(ng).gt(zero));
+    (wo_local.z.gt(zero) & finite & same_side, wi)
+}
+
+/// For a light along world direction `wi`: where it reaches the front of a Lambertian part
+/// without leaking through the surface (the mask), `cos θi/π` — [`Scattering`]'s value without
+/// the albedo — and the part's density of sampling `wi` (0 where it leaks).
+///
+/// [`Scattering`]: crate::material::Scattering
+#[inline(always)]
+fn lambert_value_and_pdf(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    wo_local: V3<f32x8>,
+    wi: V3<f32x8>,
+) -> ((f32x8, f32x8), f32x8) {
+    let zero = f32x8::ZERO;
+    let local = frame.to_local(wi);
+    // Part::local: the shading and the geometric normal put wi on the same side.
+    let consistent = wi.dot(ng).gt(zero).same(local.z.gt(zero));
+    let (front, cos_over_pi) = lambert_eval(wo_local, local);
+    // Bsdf::pdf keeps only finite, positive densities (Scattering::eval_pdf's sum over one part
+    // of weight 1, divided by the total weight 1, gives the same bits).
+    let p = lambert_pdf(wo_local, local);
+    let usable = consistent & p.finite() & p.gt(zero);
+    let pdf = <f32x8 as Real>::select(usable, p, zero);
+    ((front & consistent, cos_over_pi), pdf)
+}
+
+/// The BSDF sample of a Lambertian part from `(ux, uy)`: where it is usable (the mask: above
+/// the surface, a positive finite density, not leaking through it), the world direction
+/// (normalised, as [`Scattering`] returns it) and its density.
+///
+/// [`Scattering`]: crate::material::Scattering
+#[inline(always)]
+fn lambert_bounce(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    wo: V3<f32x8>,
+    wo_local: V3<f32x8>,
+    (ux, uy): (f32x8, f32x8),
+) -> (f32x8, V3<f32x8>, f32x8) {
+    let zero = f32x8::ZERO;
+    let (ok, local, pdf) = lambert_sample(wo_local, ux, uy);
+    // Bsdf::sample's test of a useful sample (the albedo is finite and not black).
+    let finite = local.x.finite() & local.y.finite() & local.z.finite();
+    let useful = ok & pdf.gt(zero) & pdf.finite() & finite;
+    let wi = frame.to_world(local).normalize();
+    // Scattering::sample's leak test: the side the sample chose agrees with the geometric one.
+    let reflected = local.z.gt(zero).same(wo_local.z.gt(zero));
+    let same_side = wi.dot(ng).gt(zero).same(wo.dot(ng).gt(zero));
+    (useful & same_side.same(reflected), wi, pdf)
+}

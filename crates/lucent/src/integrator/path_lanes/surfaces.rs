@@ -1,0 +1,151 @@
+//! The materials lanes shade, and what they are at a hit.
+
+use crate::Rgb;
+use crate::material::Surface;
+use crate::scene::Scene;
+use crate::shape::SurfaceHit;
+use crate::texture::Texture;
+
+/// Which of a scene's materials the lanes shade, and how.
+#[derive(Clone, Debug, Default)]
+pub struct LaneMaterials<'a> {
+    /// Per material: how lanes shade it, if they do.
+    lanes: Vec<Option<LaneMaterial<'a>>>,
+}
+
+/// A material as lanes shade it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LaneMaterial<'a> {
+    surface: LaneSurface<'a>,
+    /// Whether the hit's vertex colour multiplies a Lambertian albedo.
+    vertex_colors: bool,
+    pub(super) two_sided: bool,
+}
+
+/// The surfaces lanes know, with their textures.
+#[derive(Clone, Copy, Debug)]
+enum LaneSurface<'a> {
+    /// Lambertian (Mitsuba's `diffuse`).
+    Lambert { reflectance: &'a Texture },
+    /// A smooth conductor (Mitsuba's `conductor`).
+    Mirror {
+        eta: &'a Texture,
+        k: &'a Texture,
+        specular: &'a Texture,
+    },
+    /// Smooth glass (Mitsuba's `dielectric`).
+    Glass {
+        eta: f32,
+        specular: &'a Texture,
+        transmittance: &'a Texture,
+    },
+}
+
+/// What a lane's surface is at its hit, textures evaluated.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum LaneBsdf {
+    /// Lambert's albedo.
+    Lambert(Rgb),
+    /// A smooth conductor's index and tint.
+    Mirror { eta: Rgb, k: Rgb, specular: Rgb },
+    /// Smooth glass's index and tints.
+    Glass {
+        eta: f32,
+        specular: Rgb,
+        transmittance: Rgb,
+    },
+}
+
+impl<'a> LaneMaterials<'a> {
+    /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`),
+    /// smooth conductors (`conductor`) and smooth glass (`dielectric`), their parameters
+    /// colours or textures. Any other material is shaded per path.
+    pub fn of(scene: &'a Scene) -> Self {
+        let lanes = scene
+            .materials
+            .iter()
+            .map(|m| {
+                let surface = match &m.surface {
+                    Surface::Diffuse { reflectance } => LaneSurface::Lambert { reflectance },
+                    Surface::Conductor {
+                        eta,
+                        k,
+                        specular,
+                        roughness: None,
+                    } => LaneSurface::Mirror { eta, k, specular },
+                    Surface::Dielectric {
+                        eta,
+                        specular,
+                        transmittance,
+                        roughness: None,
+                    } => LaneSurface::Glass {
+                        eta: *eta,
+                        specular,
+                        transmittance,
+                    },
+                    _ => return None,
+                };
+                Some(LaneMaterial {
+                    surface,
+                    vertex_colors: m.vertex_colors,
+                    two_sided: m.two_sided,
+                })
+            })
+            .collect();
+        Self { lanes }
+    }
+
+    /// How lanes shade material `index`, if they do.
+    #[inline]
+    pub(super) fn get(&self, index: u32) -> Option<LaneMaterial<'a>> {
+        self.lanes.get(index as usize).copied().flatten()
+    }
+
+    /// Whether lanes shade any material of the scene.
+    pub fn any(&self) -> bool {
+        self.lanes.iter().any(Option::is_some)
+    }
+}
+
+/// What material `m` is at `hit`, its textures evaluated as `Resolve` evaluates them (at the
+/// hit's coordinates, over `footprint`); a Lambertian albedo times the vertex colour (the
+/// hit's, white on shapes without) where the material says.
+#[inline(always)]
+pub(super) fn bsdf_at(
+    scene: &Scene,
+    m: LaneMaterial,
+    hit: &SurfaceHit,
+    footprint: f32,
+) -> LaneBsdf {
+    let eval = |t: &Texture| match t {
+        Texture::Solid(c) => *c,
+        t => {
+            let material = &scene.materials[hit.material as usize];
+            t.eval(&scene.tex_coords(material, hit, footprint), &scene.images)
+        }
+    };
+    match m.surface {
+        LaneSurface::Lambert { reflectance } => {
+            let color = if m.vertex_colors {
+                hit.color
+            } else {
+                Rgb::WHITE
+            };
+            LaneBsdf::Lambert(eval(reflectance) * color)
+        }
+        LaneSurface::Mirror { eta, k, specular } => LaneBsdf::Mirror {
+            eta: eval(eta),
+            k: eval(k),
+            specular: eval(specular),
+        },
+        LaneSurface::Glass {
+            eta,
+            specular,
+            transmittance,
+        } => LaneBsdf::Glass {
+            eta,
+            specular: eval(specular),
+            transmittance: eval(transmittance),
+        },
+    }
+}
