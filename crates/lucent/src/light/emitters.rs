@@ -117,7 +117,7 @@ impl Emitters {
     /// towards `p`.
     pub fn sample(&self, delta: &[Light], p: Vec3, u_pick: f32, u: Vec2) -> Option<EmitterSample> {
         let (entry, pmf, u_rest) = self.pick(u_pick)?;
-        let mut s = match entry {
+        let s = match entry {
             Entry::Delta(j) => {
                 let l = delta[j as usize].illuminate(p)?;
                 EmitterSample {
@@ -142,8 +142,7 @@ impl Emitters {
                 }
             }
         };
-        s.pdf *= pmf;
-        (s.pdf > 0.0 && s.pdf.is_finite()).then_some(s)
+        with_pick(s, pmf)
     }
 
     /// [`Emitters::sample`] for up to [`LANES`] points at once (`p[i]` with `u_pick[i]` and
@@ -199,10 +198,10 @@ impl Emitters {
                 wi: wi.lane(k),
                 distance: distance.as_array()[k],
                 radiance: self.area.lights[j].radiance,
-                pdf: pdf.as_array()[k] * pmf,
+                pdf: pdf.as_array()[k],
                 delta: false,
             };
-            out[i] = (s.pdf > 0.0 && s.pdf.is_finite()).then_some(s);
+            out[i] = with_pick(s, pmf);
         }
         out
     }
@@ -223,6 +222,14 @@ impl Emitters {
             _ => 0.0,
         }
     }
+}
+
+/// Light sample `s` of a light picked with probability `pmf`: its density times `pmf`, if that
+/// is positive and finite.
+#[inline(always)]
+fn with_pick(mut s: EmitterSample, pmf: f32) -> Option<EmitterSample> {
+    s.pdf *= pmf;
+    (s.pdf > 0.0 && s.pdf.is_finite()).then_some(s)
 }
 
 /// The power of a point-like light, for picking: a point light sends `4π·I`, a spot light

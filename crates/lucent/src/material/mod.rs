@@ -24,6 +24,7 @@ mod shading;
 pub use classic::Approximation;
 pub use gltf::GltfMaps;
 pub use principled::{PrincipledMaps, PrincipledThinMaps};
+pub(crate) use scattering::unleaked;
 pub use scattering::{Part, Scattering, ScatteringSample, Side, Terminator};
 pub use shading::{Geometry, facing, facing_lanes};
 

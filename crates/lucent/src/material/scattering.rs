@@ -263,13 +263,7 @@ impl<'a> Scattering<'a> {
         let p = &self.parts[i];
         let local_wo = p.frame.to_local(wo);
         let s = p.bsdf.sample(local_wo, u_part, u, mode)?;
-        let wi = p.frame.to_world(s.wi).normalize();
-        // Leaks: the sampled side must agree with the geometric normal.
-        let reflected = (s.wi.z > 0.0) == (local_wo.z > 0.0);
-        let same_side = (wi.dot(p.ng) > 0.0) == (wo.dot(p.ng) > 0.0);
-        if same_side != reflected {
-            return None;
-        }
+        let (wi, reflected) = unleaked(&p.frame, p.ng, (wo, local_wo), s.wi)?;
         if s.delta || self.parts.len() == 1 {
             // The part was picked with probability w_i/W and carries w_i·f_i: its own weight
             // times W.
@@ -313,6 +307,22 @@ impl<'a> Scattering<'a> {
     pub fn transmits(&self) -> bool {
         self.parts.iter().any(|p| p.bsdf.transmits())
     }
+}
+
+/// The world direction of `local_wi`, sampled in `frame` (geometric normal `ng`) for the viewer
+/// at `wo` (`local_wo` in the frame), normalised, and whether it stayed on the viewer's side;
+/// `None` where it leaks: the side the sample chose disagrees with the geometric normal's.
+#[inline(always)]
+pub(crate) fn unleaked(
+    frame: &Frame,
+    ng: Vec3,
+    (wo, local_wo): (Vec3, Vec3),
+    local_wi: Vec3,
+) -> Option<(Vec3, bool)> {
+    let wi = frame.to_world(local_wi).normalize();
+    let reflected = (local_wi.z > 0.0) == (local_wo.z > 0.0);
+    let same_side = (wi.dot(ng) > 0.0) == (wo.dot(ng) > 0.0);
+    (same_side == reflected).then_some((wi, reflected))
 }
 
 impl<'a> Resolve<'_, 'a, '_> {

@@ -128,6 +128,30 @@ fn owen_scramble(x: u32, key: u64) -> u32 {
     laine_karras_permute(x.reverse_bits(), key).reverse_bits()
 }
 
+/// The sample index whose bits, most significant first, are `index_reversed`, shuffled with
+/// `key`: each bit is flipped by a function of the bits above it, so each aligned block of 2^k
+/// indices goes to an aligned block, permuted.
+#[inline(always)]
+fn shuffled(index_reversed: u32, key: u64) -> u32 {
+    laine_karras_permute(index_reversed, key).reverse_bits()
+}
+
+/// Sobol's first dimension at shuffled index `i`, Owen-scrambled with `key`, as a 32-bit
+/// fraction. The first dimension is the bit-reversed index (van der Corput); Owen-scrambling
+/// reverses it again, so the two reversals cancel: `i` itself is scrambled.
+#[inline(always)]
+fn first_dimension(i: u32, key: u64) -> u32 {
+    laine_karras_permute(i, key).reverse_bits()
+}
+
+/// Sobol's second dimension at shuffled index `i`, Owen-scrambled with `key`. Owen-scrambling
+/// reverses, permutes and reverses back; the first reversal is in the table (reversal
+/// distributes over xor).
+#[inline(always)]
+fn second_dimension(i: u32, key: u64) -> u32 {
+    laine_karras_permute(sobol_1_reversed(i), key).reverse_bits()
+}
+
 /// The 32-bit fraction `x` as a float in `[0, 1)`: its top 24 bits, never rounded up to 1.
 #[inline]
 fn fraction_to_float(x: u32) -> f32 {
@@ -189,9 +213,7 @@ impl Sampler {
     /// The current draw's shuffled sample index.
     #[inline]
     fn shuffled_index(&self) -> u32 {
-        // Each bit of the index is flipped by a function of the bits above it, so each aligned
-        // block of 2^k indices goes to an aligned block, permuted.
-        laine_karras_permute(self.index_reversed, self.key(0)).reverse_bits()
+        shuffled(self.index_reversed, self.key(0))
     }
 
     /// This sampler as it stands, for the next `dimensions` draws to be taken from later (or
@@ -207,10 +229,7 @@ impl Sampler {
 
     /// The next value in [0,1), dimension by dimension.
     pub fn next_1d(&mut self) -> f32 {
-        let i = self.shuffled_index();
-        // Sobol's first dimension is the bit-reversed index (van der Corput); Owen-scrambling
-        // it reverses it again, so the two reversals cancel: scramble `i` itself.
-        let x = laine_karras_permute(i, self.key(1)).reverse_bits();
+        let x = first_dimension(self.shuffled_index(), self.key(1));
         self.dimension = self.dimension.wrapping_add(1);
         fraction_to_float(x)
     }
@@ -219,10 +238,10 @@ impl Sampler {
     /// (0,2)-sequence in its two dimensions).
     pub fn next_2d(&mut self) -> Vec2 {
         let i = self.shuffled_index();
-        let x = laine_karras_permute(i, self.key(1)).reverse_bits();
-        // Owen-scrambling reverses, permutes and reverses back; the first reversal is in the
-        // table (reversal distributes over xor).
-        let y = laine_karras_permute(sobol_1_reversed(i), self.key(2)).reverse_bits();
+        let (x, y) = (
+            first_dimension(i, self.key(1)),
+            second_dimension(i, self.key(2)),
+        );
         self.dimension = self.dimension.wrapping_add(2);
         Vec2::new(fraction_to_float(x), fraction_to_float(y))
     }
@@ -241,8 +260,7 @@ impl Sampler {
         };
         let (k0, k1) = (keys.key(0), keys.key(1));
         let i = shuffled_lanes(samplers, k0);
-        let x: [u32; LANES] =
-            std::array::from_fn(|l| laine_karras_permute(i[l], k1).reverse_bits());
+        let x: [u32; LANES] = std::array::from_fn(|l| first_dimension(i[l], k1));
         for s in samplers.iter_mut() {
             s.dimension = s.dimension.wrapping_add(1);
         }
@@ -260,11 +278,8 @@ impl Sampler {
         };
         let (k0, k1, k2) = (keys.key(0), keys.key(1), keys.key(2));
         let i = shuffled_lanes(samplers, k0);
-        let x: [u32; LANES] =
-            std::array::from_fn(|l| laine_karras_permute(i[l], k1).reverse_bits());
-        let y: [u32; LANES] = std::array::from_fn(|l| {
-            laine_karras_permute(sobol_1_reversed(i[l]), k2).reverse_bits()
-        });
+        let x: [u32; LANES] = std::array::from_fn(|l| first_dimension(i[l], k1));
+        let y: [u32; LANES] = std::array::from_fn(|l| second_dimension(i[l], k2));
         for s in samplers.iter_mut() {
             s.dimension = s.dimension.wrapping_add(2);
         }
@@ -289,7 +304,7 @@ fn shared_keys(samplers: &[Sampler]) -> Option<Sampler> {
 fn shuffled_lanes(samplers: &[Sampler], k0: u64) -> [u32; LANES] {
     let reversed: [u32; LANES] =
         std::array::from_fn(|l| samplers.get(l).map_or(0, |s| s.index_reversed));
-    std::array::from_fn(|l| laine_karras_permute(reversed[l], k0).reverse_bits())
+    std::array::from_fn(|l| shuffled(reversed[l], k0))
 }
 
 #[cfg(test)]

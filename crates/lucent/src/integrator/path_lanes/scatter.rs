@@ -10,12 +10,12 @@ use super::LaneHit;
 use super::surfaces::LaneBsdf;
 use crate::Rgb;
 use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
-use crate::bsdf::{Bsdf, FrameOf, Transport, fresnel};
+use crate::bsdf::{Bsdf, Frame, FrameOf, Transport, fresnel};
 use crate::integrator::RayStats;
-use crate::integrator::path::{Path, PathTracer};
+use crate::integrator::path::{Arrival, Path, PathTracer};
 use crate::integrator::vertex::{leave, light_through};
 use crate::lanes::{LANES, Mask as _, Real, V3};
-use crate::material::{Geometry, ScatteringSample, facing_lanes};
+use crate::material::{Geometry, ScatteringSample, facing_lanes, unleaked};
 use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
 
@@ -43,8 +43,9 @@ impl PathTracer {
         };
 
         // The part Resolve makes of a leaf (material/scattering.rs): seen from the back, a
-        // two-sided reflector turns its normals round (glass, which transmits, does not); the shading normal then faces
-        // the viewer ([`crate::material::facing`]), the frame follows ∂p/∂u.
+        // two-sided reflector turns its normals round (glass, which transmits, does not); the
+        // shading normal then faces the viewer ([`crate::material::facing`]); the frame follows
+        // ∂p/∂u.
         let dir = vec(&|h| paths[h.lane].ray.dir);
         let wo = -dir;
         let ng = vec(&|h| h.hit.normal);
@@ -60,21 +61,24 @@ impl PathTracer {
 
         // Light sampling, where the surface is not a mirror (whose Dirac lobe no light sample
         // can meet): the lights sampled per path, their BSDF values in lanes.
-        let diffuse: ArrayVec<usize, LANES> = (0..k)
-            .filter(|&j| matches!(batch[j].bsdf, LaneBsdf::Lambert(_)))
-            .collect();
-        let mut samplers: ArrayVec<Sampler, LANES> =
-            diffuse.iter().map(|&j| batch[j].at.u_light).collect();
+        let lanes_of = |kind: fn(&LaneBsdf) -> bool| -> ArrayVec<usize, LANES> {
+            (0..k).filter(|&j| kind(&batch[j].bsdf)).collect()
+        };
+        let samplers_of = |lanes: &[usize], pick: fn(&Arrival) -> Sampler| -> ArrayVec<_, LANES> {
+            lanes.iter().map(|&j| pick(&batch[j].at)).collect()
+        };
+        let diffuse = lanes_of(|b| matches!(b, LaneBsdf::Lambert(_)));
+        let mut samplers = samplers_of(&diffuse, |at| at.u_light);
         let u_pick = Sampler::next_1d_lanes(&mut samplers);
         let u_light = Sampler::next_2d_lanes(&mut samplers);
         let points: ArrayVec<Vec3, LANES> = diffuse.iter().map(|&j| batch[j].hit.point).collect();
-        let mut lights = [None; LANES];
-        let sampled = scene
-            .emitters
-            .sample_lanes(&scene.lights, &points, &u_pick, &u_light);
-        for (&j, s) in diffuse.iter().zip(sampled) {
-            lights[j] = s;
-        }
+        let lights = at_lanes(
+            &diffuse,
+            scene
+                .emitters
+                .sample_lanes(&scene.lights, &points, &u_pick, &u_light),
+            None,
+        );
         let wi = V3::gather(&std::array::from_fn(|j| {
             lights[j].map_or(Vec3::Z, |s| s.wi)
         }));
@@ -82,33 +86,25 @@ impl PathTracer {
 
         // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
         // direction's drawn (a mirror draws none).
-        let mut samplers: ArrayVec<Sampler, LANES> = diffuse
-            .iter()
-            .map(|&j| {
-                let mut u = batch[j].at.u_bsdf;
-                u.defer(1);
-                u
-            })
-            .collect();
-        let mut u_bsdf = [(0.5, 0.5); LANES];
-        for (&j, u) in diffuse.iter().zip(Sampler::next_2d_lanes(&mut samplers)) {
-            u_bsdf[j] = (u.x, u.y);
-        }
-        let ux = f32x8::new(std::array::from_fn(|j| u_bsdf[j].0));
-        let uy = f32x8::new(std::array::from_fn(|j| u_bsdf[j].1));
+        let mut samplers = samplers_of(&diffuse, |at| {
+            let mut u = at.u_bsdf;
+            u.defer(1);
+            u
+        });
+        let u_bsdf = at_lanes(
+            &diffuse,
+            Sampler::next_2d_lanes(&mut samplers),
+            Vec2::splat(0.5),
+        );
+        let ux = f32x8::new(u_bsdf.map(|u| u.x));
+        let uy = f32x8::new(u_bsdf.map(|u| u.y));
         let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
         let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
         // Glass picks reflection or refraction with the lobe's number (its direction's
         // numbers are not used).
-        let glass: ArrayVec<usize, LANES> = (0..k)
-            .filter(|&j| matches!(batch[j].bsdf, LaneBsdf::Glass { .. }))
-            .collect();
-        let mut samplers: ArrayVec<Sampler, LANES> =
-            glass.iter().map(|&j| batch[j].at.u_bsdf).collect();
-        let mut u_lobe = [0.0; LANES];
-        for (&j, u) in glass.iter().zip(Sampler::next_1d_lanes(&mut samplers)) {
-            u_lobe[j] = u;
-        }
+        let glass = lanes_of(|b| matches!(b, LaneBsdf::Glass { .. }));
+        let mut samplers = samplers_of(&glass, |at| at.u_bsdf);
+        let u_lobe = at_lanes(&glass, Sampler::next_1d_lanes(&mut samplers), 0.0);
 
         let (front, cosine_ok, mirror_ok) = (
             front.to_bitmask(),
@@ -152,16 +148,14 @@ impl PathTracer {
                     specular,
                     transmittance,
                 } => {
-                    let frame = FrameOf {
-                        s: V3::from(frame.s.lane(j)),
-                        t: V3::from(frame.t.lane(j)),
-                        n: V3::from(frame.n.lane(j)),
+                    let frame = Frame {
+                        s: frame.s.lane(j),
+                        t: frame.t.lane(j),
+                        n: frame.n.lane(j),
                     };
-                    let wo_local = wo_local.lane(j);
-                    let (wo, ng) = (wo.lane(j), ng.lane(j));
                     glass_sample(
-                        frame,
-                        (wo, wo_local, ng),
+                        &frame,
+                        (wo.lane(j), wo_local.lane(j), ng.lane(j)),
                         u_lobe[j],
                         (eta, specular, transmittance),
                     )
@@ -192,13 +186,28 @@ impl PathTracer {
     }
 }
 
+/// The `values` of the group's lanes `lanes` in order, as an array over all lanes, `default`
+/// in the others.
+#[inline(always)]
+fn at_lanes<T: Copy>(
+    lanes: &[usize],
+    values: impl IntoIterator<Item = T>,
+    default: T,
+) -> [T; LANES] {
+    let mut out = [default; LANES];
+    for (&j, v) in lanes.iter().zip(values) {
+        out[j] = v;
+    }
+    out
+}
+
 /// Smooth glass's sample in one lane, as `Scattering::sample` draws it from its one part of
 /// weight 1: the lobe's number rescaled to the part (itself, clamped below 1), the scalar
-/// BSDF's sample in the frame, the direction in the world, and the leak test; the weight and
-/// density times 1, the same bits.
+/// BSDF's sample in the frame, then the direction in the world and the leak test
+/// ([`unleaked`]); the weight and density times 1, the same bits.
 #[inline(always)]
 fn glass_sample(
-    frame: FrameOf<f32>,
+    frame: &Frame,
     (wo, wo_local, ng): (Vec3, Vec3, Vec3),
     u_lobe: f32,
     (eta, specular, transmittance): (f32, Rgb, Rgb),
@@ -210,10 +219,8 @@ fn glass_sample(
         transmittance,
     };
     let s = bsdf.sample(wo_local, u_part, Vec2::ZERO, Transport::Radiance)?;
-    let wi: Vec3 = frame.to_world(s.wi.into()).normalize().into();
-    let reflected = (s.wi.z > 0.0) == (wo_local.z > 0.0);
-    let same_side = (wi.dot(ng) > 0.0) == (wo.dot(ng) > 0.0);
-    (same_side == reflected).then_some(ScatteringSample {
+    let (wi, reflected) = unleaked(frame, ng, (wo, wo_local), s.wi)?;
+    Some(ScatteringSample {
         wi,
         weight: s.weight,
         pdf: s.pdf,
