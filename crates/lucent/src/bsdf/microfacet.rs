@@ -13,10 +13,12 @@
 //! the roughness is `alpha_u` and `y` the bitangent (`alpha_v`), as Mitsuba 3 defines them.
 //! Microfacet normals `m` lie in the upper hemisphere.
 
-use std::f32::consts::{PI, TAU};
+use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
+use super::ggx::{Facets, Ggx};
+use crate::lanes::{Real, V3};
 use crate::special::{erf, erfinv};
 
 /// The smallest roughness used: below it `D` peaks beyond what `f32` half vectors resolve
@@ -95,6 +97,15 @@ impl Microfacet {
         (self.alpha_u, self.alpha_v)
     }
 
+    /// This distribution as GGX written once over [`Real`] (whatever its kind).
+    #[inline(always)]
+    pub fn as_ggx<R: Real>(self) -> Ggx<R> {
+        Ggx {
+            alpha_u: R::splat(self.alpha_u),
+            alpha_v: R::splat(self.alpha_v),
+        }
+    }
+
     /// The mean of the two roughnesses, for what needs one number (the Whitted integrator's
     /// Phong exponent).
     pub fn mean_alpha(self) -> f32 {
@@ -116,19 +127,16 @@ impl Microfacet {
     ///
     /// Zero for `m.z ≤ 0`.
     pub fn d(self, m: Vec3) -> f32 {
+        if self.kind == Distribution::Ggx {
+            return self.as_ggx().d(m.into());
+        }
         if m.z <= 0.0 {
             return 0.0;
         }
         let s2 = self.stretched_xy(m);
         let norm = PI * self.alpha_u * self.alpha_v;
         let z2 = m.z * m.z;
-        let d = match self.kind {
-            Distribution::Ggx => {
-                let t = s2 + z2;
-                1.0 / (norm * t * t)
-            }
-            Distribution::Beckmann => (-s2 / z2).exp() / (norm * z2 * z2),
-        };
+        let d = (-s2 / z2).exp() / (norm * z2 * z2);
         if d.is_finite() { d } else { 0.0 }
     }
 
@@ -153,24 +161,22 @@ impl Microfacet {
     /// `G1(v, m) / |cos θv|`, which stays finite as `v` becomes grazing, where `G1` and
     /// `cos θv` both vanish: for GGX `2 / (|v_z| + √(v_z² + (α_u v_x)² + (α_v v_y)²))`.
     pub fn g1_over_cos(self, v: Vec3, m: Vec3) -> f32 {
+        if self.kind == Distribution::Ggx {
+            return self.as_ggx().g1_over_cos(v.into(), m.into());
+        }
         if v.dot(m) * v.z <= 0.0 {
             return 0.0;
         }
         let p = self.projected(v);
         let z = v.z.abs();
-        match self.kind {
-            Distribution::Ggx => 2.0 / (z + (z * z + p).sqrt()),
-            Distribution::Beckmann => {
-                if p <= 0.0 {
-                    return 1.0 / z;
-                }
-                // G1/z = 2/(z(1 + erf a) + z·e^(−a²)/(a√π)), and z/a = √p.
-                let root = p.sqrt();
-                let a = z / root;
-                let tail = root * (-a * a).exp() * std::f32::consts::FRAC_2_SQRT_PI * 0.5;
-                2.0 / (z * (1.0 + erf(a)) + tail)
-            }
+        if p <= 0.0 {
+            return 1.0 / z;
         }
+        // Beckmann: G1/z = 2/(z(1 + erf a) + z·e^(−a²)/(a√π)), and z/a = √p.
+        let root = p.sqrt();
+        let a = z / root;
+        let tail = root * (-a * a).exp() * std::f32::consts::FRAC_2_SQRT_PI * 0.5;
+        2.0 / (z * (1.0 + erf(a)) + tail)
     }
 
     /// The separable shadowing-masking term `G = G1(wo, m)·G1(wi, m)`, as Mitsuba uses.
@@ -186,28 +192,23 @@ impl Microfacet {
             v.z >= 0.0,
             "sample_visible wants v in the upper hemisphere, got {v}"
         );
+        if self.kind == Distribution::Ggx {
+            return self.as_ggx().sample_visible(v.into(), (u.x, u.y)).into();
+        }
         let (au, av) = (self.alpha_u, self.alpha_v);
         let vh = Vec3::new(au * v.x, av * v.y, v.z.max(0.0)).normalize_or(Vec3::Z);
-        match self.kind {
-            Distribution::Ggx => {
-                let nh = ggx_visible_11(vh, u);
-                Vec3::new(au * nh.x, av * nh.y, nh.z.max(0.0)).normalize_or(Vec3::Z)
-            }
-            Distribution::Beckmann => {
-                // Slopes of the unit configuration, seen from vh's azimuth, then rotated to
-                // it and unstretched: m = (−x̃, −ỹ, 1)/|…|.
-                let slope = beckmann_visible_slope_11(vh.z, u);
-                let len = (vh.x * vh.x + vh.y * vh.y).sqrt();
-                let (cos_phi, sin_phi) = if len > 0.0 {
-                    (vh.x / len, vh.y / len)
-                } else {
-                    (1.0, 0.0)
-                };
-                let sx = (cos_phi * slope.x - sin_phi * slope.y) * au;
-                let sy = (sin_phi * slope.x + cos_phi * slope.y) * av;
-                Vec3::new(-sx, -sy, 1.0).normalize_or(Vec3::Z)
-            }
-        }
+        // Beckmann: slopes of the unit configuration, seen from vh's azimuth, then rotated to
+        // it and unstretched: m = (−x̃, −ỹ, 1)/|…|.
+        let slope = beckmann_visible_slope_11(vh.z, u);
+        let len = (vh.x * vh.x + vh.y * vh.y).sqrt();
+        let (cos_phi, sin_phi) = if len > 0.0 {
+            (vh.x / len, vh.y / len)
+        } else {
+            (1.0, 0.0)
+        };
+        let sx = (cos_phi * slope.x - sin_phi * slope.y) * au;
+        let sy = (sin_phi * slope.x + cos_phi * slope.y) * av;
+        Vec3::new(-sx, -sy, 1.0).normalize_or(Vec3::Z)
     }
 
     /// The density of [`Microfacet::sample_visible`] per unit solid angle of `m`, the
@@ -220,27 +221,6 @@ impl Microfacet {
         }
         self.g1_over_cos(v, m) * cos_vm * self.d(m)
     }
-}
-
-/// A visible normal of the GGX distribution of roughness 1 seen from unit `vh` (`vh.z ≥ 0`),
-/// by Heitz 2018: for α = 1 the facets are a hemisphere, so sample the hemisphere's projected
-/// disc seen from `vh` — a disc whose far half is squashed by `(1 + cos θ)/2` — and lift the
-/// point onto it.
-fn ggx_visible_11(vh: Vec3, u: Vec2) -> Vec3 {
-    // A basis around vh: t1 horizontal (undefined at normal incidence, where any will do).
-    let len2 = vh.x * vh.x + vh.y * vh.y;
-    let t1 = if len2 > 0.0 {
-        Vec3::new(-vh.y, vh.x, 0.0) / len2.sqrt()
-    } else {
-        Vec3::X
-    };
-    let t2 = vh.cross(t1);
-    let r = u.x.sqrt();
-    let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
-    let p1 = r * cos_phi;
-    let s = 0.5 * (1.0 + vh.z);
-    let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * sin_phi;
-    t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt()
 }
 
 /// A slope `(x̃, ỹ)` of the visible normals of the Beckmann distribution of roughness 1 seen
@@ -295,6 +275,24 @@ fn beckmann_visible_slope_11(cos_theta: f32, u: Vec2) -> Vec2 {
         };
     }
     Vec2::new(erfinv(y), erfinv(2.0 * u.y - 1.0))
+}
+
+/// The shared BSDF code over one path's numbers: either distribution.
+impl Facets<f32> for Microfacet {
+    #[inline(always)]
+    fn d(self, m: V3<f32>) -> f32 {
+        Microfacet::d(self, m.into())
+    }
+
+    #[inline(always)]
+    fn g1_over_cos(self, v: V3<f32>, m: V3<f32>) -> f32 {
+        Microfacet::g1_over_cos(self, v.into(), m.into())
+    }
+
+    #[inline(always)]
+    fn sample_visible(self, v: V3<f32>, (u1, u2): (f32, f32)) -> V3<f32> {
+        Microfacet::sample_visible(self, v.into(), Vec2::new(u1, u2)).into()
+    }
 }
 
 #[cfg(test)]

@@ -47,6 +47,7 @@ use crate::Rgb;
 
 pub mod frame;
 pub mod fresnel;
+pub(crate) mod ggx;
 pub mod microfacet;
 
 mod classic;
@@ -58,7 +59,7 @@ pub(crate) mod lambert;
 mod plastic;
 pub mod principled;
 pub mod principled_thin;
-mod rough_conductor;
+pub(crate) mod rough_conductor;
 mod rough_dielectric;
 pub mod rough_plastic;
 pub mod sheen;

@@ -11,10 +11,11 @@
 
 use glam::{Vec2, Vec3};
 
+use super::ggx::Facets;
 use super::microfacet::Microfacet;
 use super::{BsdfSample, fresnel};
 use crate::Rgb;
-use crate::optics::reflect;
+use crate::lanes::{Real, V3};
 
 /// The rough conductor's parameters.
 pub(super) struct RoughConductor {
@@ -22,6 +23,65 @@ pub(super) struct RoughConductor {
     k: Rgb,
     specular: Rgb,
     facets: Microfacet,
+}
+
+/// What a rough conductor's value for `(wo, wi)` is without its colours, written once for one
+/// path and for lanes ([`reflection`]).
+pub(crate) struct Reflection<R: Real> {
+    /// Both directions above the surface (else value and density are zero).
+    pub front: R::Mask,
+    /// `D(h)·G1(wi, h)·[G1(wo, h)/cos θo] / 4`: `f·cos θi` without `specular·F`.
+    pub value: R,
+    /// `D(h)·[G1(wo, h)/cos θo] / 4`, the density of sampling `wi`.
+    pub pdf: R,
+    /// `wo·h`, the Fresnel reflectance's cosine.
+    pub cos: R,
+}
+
+/// A rough conductor's sample without its colours ([`mirrored`]).
+pub(crate) struct Mirrored<R: Real> {
+    /// `wi` is above the surface (`wo` must be: the caller checks it first).
+    pub above: R::Mask,
+    /// `wo` mirrored about a visible normal `m`.
+    pub wi: V3<R>,
+    /// `wo·m`, the Fresnel reflectance's cosine.
+    pub cos: R,
+    /// `G1(wi, m)`: the weight without `specular·F`.
+    pub g1: R,
+    /// The density, `D(m)·[G1(wo, m)/cos θo] / 4`.
+    pub pdf: R,
+}
+
+/// The colourless terms of the value and density for `(wo, wi)`, with the half vector
+/// `h = (wo + wi)/|wo + wi|` (meaningful where both are above the surface: `front`).
+#[inline(always)]
+pub(crate) fn reflection<R: Real>(facets: impl Facets<R>, wo: V3<R>, wi: V3<R>) -> Reflection<R> {
+    let zero = R::splat(0.0);
+    let h = (wo + wi).normalize();
+    let d = facets.d(h);
+    // The bracket G1(wo, h)/cos θo kept whole, so that grazing wo stays finite.
+    let over_cos = facets.g1_over_cos(wo, h);
+    let quarter = R::splat(0.25);
+    Reflection {
+        front: wo.z.gt(zero) & wi.z.gt(zero),
+        value: d * facets.g1(wi, h) * over_cos * quarter,
+        pdf: d * over_cos * quarter,
+        cos: wo.dot(h),
+    }
+}
+
+/// A visible normal drawn from `wo` (above the surface) with `u`, and `wo` mirrored about it.
+#[inline(always)]
+pub(crate) fn mirrored<R: Real>(facets: impl Facets<R>, wo: V3<R>, u: (R, R)) -> Mirrored<R> {
+    let m = facets.sample_visible(wo, u);
+    let wi = (-wo).reflect(m);
+    Mirrored {
+        above: wi.z.gt(R::splat(0.0)),
+        wi,
+        cos: wo.dot(m),
+        g1: facets.g1(wi, m),
+        pdf: facets.d(m) * facets.g1_over_cos(wo, m) * R::splat(0.25),
+    }
 }
 
 impl RoughConductor {
@@ -34,32 +94,19 @@ impl RoughConductor {
         }
     }
 
-    /// The half vector of two front-side directions; `None` on the back side.
-    fn half(wo: Vec3, wi: Vec3) -> Option<Vec3> {
-        // Both z > 0, so wo + wi has z > 0 and never vanishes.
-        (wo.z > 0.0 && wi.z > 0.0).then(|| (wo + wi).normalize())
-    }
-
-    /// `f·cos θi = specular·F(wo·h)·D(h)·G1(wi, h)·[G1(wo, h)/cos θo] / 4`, the bracket kept
-    /// whole so that grazing `wo` stays finite.
+    /// `specular·F(wo·h)·D(h)·G1(wi, h)·[G1(wo, h)/cos θo] / 4`; black on the back side.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        let Some(h) = Self::half(wo, wi) else {
-            return Rgb::BLACK;
-        };
-        let g = self.facets;
-        let scalar = g.d(h) * g.g1(wi, h) * g.g1_over_cos(wo, h) * 0.25;
-        if scalar <= 0.0 {
+        let r = reflection(self.facets, wo.into(), wi.into());
+        if !r.front || r.value <= 0.0 {
             return Rgb::BLACK;
         }
-        self.specular * fresnel::conductor(wo.dot(h), self.eta, self.k) * scalar
+        self.specular * fresnel::conductor(r.cos, self.eta, self.k) * r.value
     }
 
-    /// `D(h)·[G1(wo, h)/cos θo] / 4`.
+    /// `D(h)·[G1(wo, h)/cos θo] / 4`; zero on the back side.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let Some(h) = Self::half(wo, wi) else {
-            return 0.0;
-        };
-        self.facets.d(h) * self.facets.g1_over_cos(wo, h) * 0.25
+        let r = reflection(self.facets, wo.into(), wi.into());
+        if r.front { r.pdf } else { 0.0 }
     }
 
     /// A visible normal, and `wo` mirrored about it; `None` when that goes below the horizon.
@@ -67,17 +114,14 @@ impl RoughConductor {
         if wo.z <= 0.0 {
             return None;
         }
-        let m = self.facets.sample_visible(wo, u);
-        let wi = reflect(-wo, m);
-        if wi.z <= 0.0 {
+        let s = mirrored(self.facets, wo.into(), (u.x, u.y));
+        if !s.above {
             return None;
         }
-        let weight =
-            self.specular * fresnel::conductor(wo.dot(m), self.eta, self.k) * self.facets.g1(wi, m);
         Some(BsdfSample {
-            wi,
-            weight,
-            pdf: self.facets.d(m) * self.facets.g1_over_cos(wo, m) * 0.25,
+            wi: s.wi.into(),
+            weight: self.specular * fresnel::conductor(s.cos, self.eta, self.k) * s.g1,
+            pdf: s.pdf,
             delta: false,
         })
     }

@@ -12,7 +12,7 @@ mod trig;
 mod vec3;
 
 pub use real::{Mask, Real};
-pub use trig::sin_cos_quarter;
+pub use trig::{sin_cos_quarter, sin_cos_turn};
 pub use vec3::V3;
 
 /// Paths per lane group.

@@ -61,6 +61,21 @@ impl<R: Real> V3<R> {
         self * (R::splat(1.0) / self.length_squared().sqrt())
     }
 
+    /// `v · (1/|v|)` where that reciprocal is finite and positive, else `fallback`: glam's
+    /// `normalize_or`.
+    #[inline(always)]
+    pub fn normalize_or(self, fallback: Vec3) -> Self {
+        let rcp = R::splat(1.0) / self.length_squared().sqrt();
+        let usable = rcp.finite() & rcp.gt(R::splat(0.0));
+        Self::select(usable, self * rcp, Self::splat(fallback))
+    }
+
+    /// `self` mirrored about unit `n`: `self − 2(n·self)·n`, as `optics::reflect`.
+    #[inline(always)]
+    pub fn reflect(self, n: Self) -> Self {
+        self - n * (R::splat(2.0) * n.dot(self))
+    }
+
     /// Per lane: `a` where `m`, else `b`.
     #[inline(always)]
     pub fn select(m: R::Mask, a: Self, b: Self) -> Self {

@@ -57,7 +57,7 @@ impl Roughness {
     }
 
     /// The microfacets at `at`.
-    fn at(&self, at: &TexCoords, images: &[ImageTexture]) -> Microfacet {
+    pub(crate) fn at(&self, at: &TexCoords, images: &[ImageTexture]) -> Microfacet {
         let u = self.alpha_u.eval_float(at, images);
         let v = if self.alpha_v == self.alpha_u {
             u

@@ -12,6 +12,7 @@
 //! `lanes_give_the_scalar_paths_bits` holds the two to that — and an image is the same with
 //! lanes or without, on any number of threads.
 
+mod lobes;
 mod scatter;
 mod surfaces;
 #[cfg(test)]

@@ -7,15 +7,19 @@ use glam::{Vec2, Vec3};
 use wide::f32x8;
 
 use super::LaneHit;
+use super::lobes::{
+    glass_sample, lambert_bounce, lambert_value_and_pdf, mirror_bounce, rough_bounce,
+    rough_light_lane, rough_sample_lane, rough_value_and_pdf,
+};
 use super::surfaces::LaneBsdf;
 use crate::Rgb;
-use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
-use crate::bsdf::{Bsdf, Frame, FrameOf, Transport, fresnel};
+use crate::bsdf::ggx::Ggx;
+use crate::bsdf::{Frame, FrameOf, fresnel};
 use crate::integrator::RayStats;
 use crate::integrator::path::{Arrival, Path, PathTracer};
 use crate::integrator::vertex::{leave, light_through};
-use crate::lanes::{LANES, Mask as _, Real, V3};
-use crate::material::{Geometry, ScatteringSample, facing_lanes, unleaked};
+use crate::lanes::{LANES, Real, V3};
+use crate::material::{Geometry, ScatteringSample, facing_lanes};
 use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
 
@@ -67,7 +71,9 @@ impl PathTracer {
         let samplers_of = |lanes: &[usize], pick: fn(&Arrival) -> Sampler| -> ArrayVec<_, LANES> {
             lanes.iter().map(|&j| pick(&batch[j].at)).collect()
         };
-        let diffuse = lanes_of(|b| matches!(b, LaneBsdf::Lambert(_)));
+        // Lambert and rough conductors: the surfaces with lobes that are not Dirac deltas.
+        let diffuse =
+            lanes_of(|b| matches!(b, LaneBsdf::Lambert(_) | LaneBsdf::RoughMirror { .. }));
         let mut samplers = samplers_of(&diffuse, |at| at.u_light);
         let u_pick = Sampler::next_1d_lanes(&mut samplers);
         let u_light = Sampler::next_2d_lanes(&mut samplers);
@@ -83,6 +89,19 @@ impl PathTracer {
             lights[j].map_or(Vec3::Z, |s| s.wi)
         }));
         let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
+        // GGX facets where the surface is a rough conductor (roughness 1 elsewhere).
+        let alphas: [(f32, f32); LANES] = std::array::from_fn(|j| match of(j).bsdf {
+            LaneBsdf::RoughMirror { alpha, .. } => alpha,
+            _ => (1.0, 1.0),
+        });
+        let ggx = Ggx {
+            alpha_u: f32x8::new(alphas.map(|a| a.0)),
+            alpha_v: f32x8::new(alphas.map(|a| a.1)),
+        };
+        let rough = batch
+            .iter()
+            .any(|h| matches!(h.bsdf, LaneBsdf::RoughMirror { .. }));
+        let rough_light = rough.then(|| rough_value_and_pdf(&frame, ng, wo_local, wi, ggx));
 
         // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
         // direction's drawn (a mirror draws none).
@@ -100,6 +119,7 @@ impl PathTracer {
         let uy = f32x8::new(u_bsdf.map(|u| u.y));
         let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
         let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
+        let rough_sample = rough.then(|| rough_bounce(&frame, ng, (wo, wo_local), ggx, (ux, uy)));
         // Glass picks reflection or refraction with the lobe's number (its direction's
         // numbers are not used).
         let glass = lanes_of(|b| matches!(b, LaneBsdf::Glass { .. }));
@@ -160,6 +180,23 @@ impl PathTracer {
                         (eta, specular, transmittance),
                     )
                 }
+                LaneBsdf::RoughMirror {
+                    eta, k, specular, ..
+                } => {
+                    let colours = (eta, k, specular);
+                    if let (Some(s), Some((consistent, r))) = (&lights[j], &rough_light) {
+                        let consistent = consistent.to_bitmask() & (1 << j) != 0;
+                        let f_pdf = rough_light_lane(r, consistent, j, colours);
+                        let light = light_through(scene, &h.hit, s, f_pdf, true, stats);
+                        path.l += path.beta * light;
+                    }
+                    rough_sample.as_ref().and_then(|(ok, wi, (cos, g1, pdf))| {
+                        let terms = (cos.as_array()[j], g1.as_array()[j], pdf.as_array()[j]);
+                        let ok = ok.to_bitmask() & (1 << j) != 0;
+                        ok.then(|| rough_sample_lane(wi.lane(j), terms, colours))
+                            .flatten()
+                    })
+                }
                 LaneBsdf::Mirror { eta, k, specular } => {
                     // Conductor::sample: the tint times the Fresnel reflectance at the
                     // viewer's cosine; Bsdf::sample keeps a finite weight that is not black.
@@ -199,103 +236,4 @@ fn at_lanes<T: Copy>(
         out[j] = v;
     }
     out
-}
-
-/// Smooth glass's sample in one lane, as `Scattering::sample` draws it from its one part of
-/// weight 1: the lobe's number rescaled to the part (itself, clamped below 1), the scalar
-/// BSDF's sample in the frame, then the direction in the world and the leak test
-/// ([`unleaked`]); the weight and density times 1, the same bits.
-#[inline(always)]
-fn glass_sample(
-    frame: &Frame,
-    (wo, wo_local, ng): (Vec3, Vec3, Vec3),
-    u_lobe: f32,
-    (eta, specular, transmittance): (f32, Rgb, Rgb),
-) -> Option<ScatteringSample> {
-    let u_part = u_lobe.clamp(0.0, 1.0 - f32::EPSILON);
-    let bsdf = Bsdf::Dielectric {
-        eta,
-        specular,
-        transmittance,
-    };
-    let s = bsdf.sample(wo_local, u_part, Vec2::ZERO, Transport::Radiance)?;
-    let (wi, reflected) = unleaked(frame, ng, (wo, wo_local), s.wi)?;
-    Some(ScatteringSample {
-        wi,
-        weight: s.weight,
-        pdf: s.pdf,
-        delta: s.delta,
-        reflected,
-    })
-}
-
-/// The mirror direction of a smooth conductor: where it is usable (the mask: the viewer above
-/// the surface, and the reflection not leaking through it), the world direction (normalised, as
-/// [`Scattering`] returns it).
-///
-/// [`Scattering`]: crate::material::Scattering
-#[inline(always)]
-fn mirror_bounce(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
-    wo: V3<f32x8>,
-    wo_local: V3<f32x8>,
-) -> (f32x8, V3<f32x8>) {
-    let zero = f32x8::ZERO;
-    let local = V3::new(-wo_local.x, -wo_local.y, wo_local.z);
-    let finite = local.x.finite() & local.y.finite() & local.z.finite();
-    let wi = frame.to_world(local).normalize();
-    // Scattering::sample's leak test: a reflection stays on the viewer's side.
-    let same_side = wi.dot(ng).gt(zero).same(wo.dot(ng).gt(zero));
-    (wo_local.z.gt(zero) & finite & same_side, wi)
-}
-
-/// For a light along world direction `wi`: where it reaches the front of a Lambertian part
-/// without leaking through the surface (the mask), `cos θi/π` — [`Scattering`]'s value without
-/// the albedo — and the part's density of sampling `wi` (0 where it leaks).
-///
-/// [`Scattering`]: crate::material::Scattering
-#[inline(always)]
-fn lambert_value_and_pdf(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
-    wo_local: V3<f32x8>,
-    wi: V3<f32x8>,
-) -> ((f32x8, f32x8), f32x8) {
-    let zero = f32x8::ZERO;
-    let local = frame.to_local(wi);
-    // Part::local: the shading and the geometric normal put wi on the same side.
-    let consistent = wi.dot(ng).gt(zero).same(local.z.gt(zero));
-    let (front, cos_over_pi) = lambert_eval(wo_local, local);
-    // Bsdf::pdf keeps only finite, positive densities (Scattering::eval_pdf's sum over one part
-    // of weight 1, divided by the total weight 1, gives the same bits).
-    let p = lambert_pdf(wo_local, local);
-    let usable = consistent & p.finite() & p.gt(zero);
-    let pdf = <f32x8 as Real>::select(usable, p, zero);
-    ((front & consistent, cos_over_pi), pdf)
-}
-
-/// The BSDF sample of a Lambertian part from `(ux, uy)`: where it is usable (the mask: above
-/// the surface, a positive finite density, not leaking through it), the world direction
-/// (normalised, as [`Scattering`] returns it) and its density.
-///
-/// [`Scattering`]: crate::material::Scattering
-#[inline(always)]
-fn lambert_bounce(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
-    wo: V3<f32x8>,
-    wo_local: V3<f32x8>,
-    (ux, uy): (f32x8, f32x8),
-) -> (f32x8, V3<f32x8>, f32x8) {
-    let zero = f32x8::ZERO;
-    let (ok, local, pdf) = lambert_sample(wo_local, ux, uy);
-    // Bsdf::sample's test of a useful sample (the albedo is finite and not black).
-    let finite = local.x.finite() & local.y.finite() & local.z.finite();
-    let useful = ok & pdf.gt(zero) & pdf.finite() & finite;
-    let wi = frame.to_world(local).normalize();
-    // Scattering::sample's leak test: the side the sample chose agrees with the geometric one.
-    let reflected = local.z.gt(zero).same(wo_local.z.gt(zero));
-    let same_side = wi.dot(ng).gt(zero).same(wo.dot(ng).gt(zero));
-    (useful & same_side.same(reflected), wi, pdf)
 }

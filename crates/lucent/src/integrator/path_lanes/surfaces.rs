@@ -1,7 +1,8 @@
 //! The materials lanes shade, and what they are at a hit.
 
 use crate::Rgb;
-use crate::material::Surface;
+use crate::bsdf::Distribution;
+use crate::material::{Roughness, Surface};
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
 use crate::texture::Texture;
@@ -33,6 +34,13 @@ enum LaneSurface<'a> {
         k: &'a Texture,
         specular: &'a Texture,
     },
+    /// A rough conductor with GGX facets (Mitsuba's `roughconductor`).
+    RoughMirror {
+        eta: &'a Texture,
+        k: &'a Texture,
+        specular: &'a Texture,
+        roughness: &'a Roughness,
+    },
     /// Smooth glass (Mitsuba's `dielectric`).
     Glass {
         eta: f32,
@@ -48,6 +56,13 @@ pub(super) enum LaneBsdf {
     Lambert(Rgb),
     /// A smooth conductor's index and tint.
     Mirror { eta: Rgb, k: Rgb, specular: Rgb },
+    /// A rough conductor's index, tint and GGX roughness (tangent, bitangent; clamped).
+    RoughMirror {
+        eta: Rgb,
+        k: Rgb,
+        specular: Rgb,
+        alpha: (f32, f32),
+    },
     /// Smooth glass's index and tints.
     Glass {
         eta: f32,
@@ -58,8 +73,9 @@ pub(super) enum LaneBsdf {
 
 impl<'a> LaneMaterials<'a> {
     /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`),
-    /// smooth conductors (`conductor`) and smooth glass (`dielectric`), their parameters
-    /// colours or textures. Any other material is shaded per path.
+    /// smooth conductors (`conductor`), rough conductors with GGX facets (`roughconductor`)
+    /// and smooth glass (`dielectric`), their parameters colours or textures. Any other
+    /// material is shaded per path.
     pub fn of(scene: &'a Scene) -> Self {
         let lanes = scene
             .materials
@@ -73,6 +89,17 @@ impl<'a> LaneMaterials<'a> {
                         specular,
                         roughness: None,
                     } => LaneSurface::Mirror { eta, k, specular },
+                    Surface::Conductor {
+                        eta,
+                        k,
+                        specular,
+                        roughness: Some(roughness),
+                    } if roughness.distribution == Distribution::Ggx => LaneSurface::RoughMirror {
+                        eta,
+                        k,
+                        specular,
+                        roughness,
+                    },
                     Surface::Dielectric {
                         eta,
                         specular,
@@ -117,12 +144,10 @@ pub(super) fn bsdf_at(
     hit: &SurfaceHit,
     footprint: f32,
 ) -> LaneBsdf {
+    let material = &scene.materials[hit.material as usize];
     let eval = |t: &Texture| match t {
         Texture::Solid(c) => *c,
-        t => {
-            let material = &scene.materials[hit.material as usize];
-            t.eval(&scene.tex_coords(material, hit, footprint), &scene.images)
-        }
+        t => t.eval(&scene.tex_coords(material, hit, footprint), &scene.images),
     };
     match m.surface {
         LaneSurface::Lambert { reflectance } => {
@@ -138,6 +163,20 @@ pub(super) fn bsdf_at(
             k: eval(k),
             specular: eval(specular),
         },
+        LaneSurface::RoughMirror {
+            eta,
+            k,
+            specular,
+            roughness,
+        } => {
+            let at = scene.tex_coords(material, hit, footprint);
+            LaneBsdf::RoughMirror {
+                eta: eval(eta),
+                k: eval(k),
+                specular: eval(specular),
+                alpha: roughness.at(&at, &scene.images).alphas(),
+            }
+        }
         LaneSurface::Glass {
             eta,
             specular,

@@ -1,18 +1,21 @@
 //! Lanes against one path at a time, bit for bit.
 
 use super::*;
+use crate::bsdf::Distribution;
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::light::point::{Falloff, PointLight};
-use crate::material::{Material, Surface};
+use crate::material::{Material, Roughness, Surface};
 use crate::scene::SceneBuilder;
 use crate::shape::{Mesh, Sphere};
 use crate::texture::Texture;
 use glam::Vec3;
 
 /// An open box of Lambertian walls (one two-sided, one seen from behind through the open
-/// side), a Lambertian ball, a metal one and a glass one, a rectangular light, a point light
-/// and a grey sky: paths that go through lanes, per path, and between the two.
+/// side), a Lambertian ball, a metal one, a glass one, a rough metal one (GGX, anisotropic,
+/// its roughness a texture) and a rough metal one that lanes do not know (Beckmann), a
+/// rectangular light, a point light and a grey sky: paths that go through lanes, per path,
+/// and between the two.
 fn mixed_scene() -> Scene {
     let camera = Camera::new(Vec3::new(0.2, 0.1, 3.5), Vec3::ZERO, Vec3::Y, 50.0, 16, 16);
     let mut b = SceneBuilder::new(camera.unwrap());
@@ -44,6 +47,29 @@ fn mixed_scene() -> Scene {
         )
         .0,
     );
+    let rough = |distribution, alpha_u| {
+        Material::physically_based(
+            Surface::Conductor {
+                eta: Texture::from(Rgb::new(0.2, 0.9, 1.1)),
+                k: Texture::from(Rgb::new(3.9, 2.4, 2.2)),
+                specular: Texture::from(1.0),
+                roughness: Some(Roughness {
+                    distribution,
+                    alpha_u,
+                    alpha_v: Texture::from(0.08),
+                }),
+            },
+            &[],
+        )
+        .0
+    };
+    let ggx_alpha = Texture::Checker(crate::texture::checker::Checker {
+        even: Rgb::gray(0.4),
+        odd: Rgb::gray(0.02),
+        size: 0.2,
+    });
+    let ggx = b.material(rough(Distribution::Ggx, ggx_alpha));
+    let beckmann = b.material(rough(Distribution::Beckmann, Texture::from(0.3)));
     let glass = b.material(
         Material::physically_based(
             Surface::Dielectric {
@@ -97,6 +123,12 @@ fn mixed_scene() -> Scene {
         },
         glass,
     );
+    for (center, radius, material) in [
+        (Vec3::new(-0.55, 0.35, -0.5), 0.3, ggx),
+        (Vec3::new(0.6, 0.4, -0.5), 0.25, beckmann),
+    ] {
+        b.sphere(Sphere { center, radius }, material);
+    }
     b.light(Light::Point(PointLight {
         position: Vec3::new(0.5, 0.5, 0.8),
         intensity: Rgb::gray(0.5),
@@ -110,6 +142,21 @@ fn lanes_give_the_scalar_paths_bits() {
     let scene = mixed_scene();
     let lanes = LaneMaterials::of(&scene);
     assert!(lanes.any());
+    // The GGX metal goes through lanes, the Beckmann one per path.
+    let mut rough = 0;
+    for (i, m) in scene.materials.iter().enumerate() {
+        if let Surface::Conductor {
+            roughness: Some(r), ..
+        } = &m.surface
+        {
+            assert_eq!(
+                lanes.get(i as u32).is_some(),
+                r.distribution == Distribution::Ggx
+            );
+            rough += 1;
+        }
+    }
+    assert_eq!(rough, 2);
     let tracer = PathTracer {
         max_depth: 6,
         rr_depth: 2,
