@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
 """lucent's path tracer against Mitsuba 3 on the Cornell box, in one run on one machine.
 
-    python bench/peers/mitsuba.py [compare] [--spp 16 64 256] [--rfilter gaussian|box] ...
+    python bench/peers/mitsuba.py [compare] [--scene cbox|showcase] [--spp 16 64 256] ...
     python bench/peers/mitsuba.py refs [--force]
+
+`--scene showcase` runs the same comparison on the second scene (bench/peers/showcase.xml: a
+textured mesh of 93,696 triangles, glass, rough gold and an environment map), whose mesh
+bench/peers/spot_mesh.py makes from ../shared/data; its files are named showcase-… instead of
+cbox-… (reference target/peers/showcase-256-ref.exr, table target/peers/mitsuba-showcase.csv).
 
 `compare` (the default):
   1. renders, or reuses when present, the reference target/peers/cbox-256-ref.exr (Mitsuba
@@ -29,6 +34,7 @@ from __future__ import annotations
 import argparse
 import csv
 import hashlib
+import importlib.util
 import json
 import math
 import os
@@ -55,7 +61,10 @@ except ImportError as e:
     sys.exit(f"error: {e}; run bench/peers/run.sh, which installs mitsuba==3.9.1 and numpy in a venv")
 
 ROOT = HERE.parent.parent
-SCENE = ROOT / "examples" / "cornell-box.xml"
+CBOX = ROOT / "examples" / "cornell-box.xml"
+SHOWCASE = HERE / "showcase.xml"
+# The scene compared: "cbox" or "showcase" (set once by main from --scene).
+SCENE_NAME = "cbox"
 OUT = ROOT / "target" / "peers"
 LUCENT = ROOT / "target" / "release" / "lucent"
 LLVM = "llvm_ad_rgb"
@@ -68,9 +77,31 @@ PASS_LANES = 1 << 24
 # The scene and its variants
 
 
+def base_text() -> str:
+    """The compared scene's XML as both renderers read it: the Cornell box's file, or the
+    showcase's with its mesh (made on first use), texture and sky as absolute paths."""
+    if SCENE_NAME == "cbox":
+        return CBOX.read_text()
+    spec = importlib.util.spec_from_file_location("spot_mesh", HERE / "spot_mesh.py")
+    spot_mesh = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(spot_mesh)
+    data = spot_mesh.data_dir()
+    mesh = OUT / "scenes" / "spot-2.obj"
+    if not mesh.exists():
+        if not (data / "meshes" / "spot.obj").exists():
+            sys.exit(f"error: {data}/meshes/spot.obj not found: the showcase needs ../shared/data "
+                     "(or LUCENT_DATA)")
+        print(f"showcase: {rel(mesh)}: {spot_mesh.write(mesh, 2)} triangles", flush=True)
+    texture = data / "gltf" / "CesiumMilkTruck" / "glTF" / "CesiumMilkTruck.png"
+    text = SHOWCASE.read_text()
+    for token, path in [("@MESH@", mesh), ("@TEXTURE@", texture), ("@SKY@", ROOT / "examples" / "sky.hdr")]:
+        text = text.replace(token, str(path.resolve()))
+    return text
+
+
 def scene_text(width: int, height: int, rfilter: str) -> str:
-    """The Cornell box's XML with another resolution and pixel filter (spp is given at render)."""
-    text = SCENE.read_text()
+    """The compared scene's XML with another resolution and pixel filter (spp is given at render)."""
+    text = base_text()
     for pattern, value in [
         (r'(<integer name="width" value=")\d+(")', width),
         (r'(<integer name="height" value=")\d+(")', height),
@@ -78,16 +109,17 @@ def scene_text(width: int, height: int, rfilter: str) -> str:
     ]:
         text, n = re.subn(pattern, rf"\g<1>{value}\g<2>", text)
         if n != 1:
-            sys.exit(f"error: {SCENE} does not have exactly one match for {pattern}")
+            sys.exit(f"error: the {SCENE_NAME} scene does not have exactly one match for {pattern}")
     return text
 
 
 def scene_file(width: int, height: int, rfilter: str) -> Path:
     """The committed scene itself when nothing changes, else a modified copy under target/peers."""
     text = scene_text(width, height, rfilter)
-    if text == SCENE.read_text():
-        return SCENE
-    path = OUT / "scenes" / f"cornell-box-{width}x{height}-{rfilter}.xml"
+    if SCENE_NAME == "cbox" and text == CBOX.read_text():
+        return CBOX
+    stem = "cornell-box" if SCENE_NAME == "cbox" else SCENE_NAME
+    path = OUT / "scenes" / f"{stem}-{width}x{height}-{rfilter}.xml"
     path.parent.mkdir(parents=True, exist_ok=True)
     if not path.exists() or path.read_text() != text:
         path.write_text(text)
@@ -241,7 +273,7 @@ class Reference:
 
 
 def reference_256(rfilter: str) -> Reference:
-    name = "cbox-256-ref" if rfilter == "gaussian" else f"cbox-256-{rfilter}-ref"
+    name = f"{SCENE_NAME}-256-ref" if rfilter == "gaussian" else f"{SCENE_NAME}-256-{rfilter}-ref"
     return Reference(name, 256, 256, 4096, rfilter, seed=1_000_000)
 
 
@@ -394,7 +426,7 @@ def compare(a: argparse.Namespace) -> None:
                             errors(img, ref), "; ".join(notes)))
             print(f"  mitsuba {variant:11s} {spp:5d} spp: {walls[variant]:.3f} s", flush=True)
             if a.keep_images:
-                write_exr(OUT / f"mitsuba-{variant}-{spp}spp.exr", img)
+                write_exr(OUT / f"mitsuba-{SCENE_NAME}-{variant}-{spp}spp.exr", img)
         if a.mitsuba_only:
             continue
 
@@ -403,7 +435,7 @@ def compare(a: argparse.Namespace) -> None:
         runs.append((["--spp", str(spp)], "equal samples", None))
         for args, note, limit in runs:
             tag = f"{spp}spp" if limit is None else f"{limit:.3f}s"
-            out = OUT / f"lucent-{tag}.exr"
+            out = OUT / f"lucent-{SCENE_NAME}-{tag}.exr"
             try:
                 run = run_lucent(a.lucent, scene, args, a.threads, out)
             except LucentError as e:
@@ -420,7 +452,7 @@ def compare(a: argparse.Namespace) -> None:
     print(f"reference: {rel(reference.exr)} (Mitsuba {LLVM}, {ref_meta['spp']} spp, {a.rfilter} filter). "
           "Errors over all pixels and channels: relMSE = mean((a-b)^2/(b^2+1e-2)), MSE = mean((a-b)^2).")
     print_table(rows)
-    csv_path = OUT / "mitsuba.csv"
+    csv_path = OUT / ("mitsuba.csv" if SCENE_NAME == "cbox" else f"mitsuba-{SCENE_NAME}.csv")
     write_csv(csv_path, rows, w, h, a.rfilter, a.threads)
     print(f"\nwrote {rel(csv_path)} (also MSE/mean(ref)^2, lucent's own render time, samples)")
 
@@ -469,6 +501,9 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", metavar="{compare,refs}")
     c = sub.add_parser("compare", parents=[common], help="the comparison table (the default command)")
+    c.add_argument("--scene", choices=["cbox", "showcase"], default="cbox",
+                   help="the Cornell box (default) or the showcase (textured 94k-triangle mesh, glass, "
+                        "rough gold, environment map)")
     c.add_argument("--spp", type=int, nargs="+", default=[16, 64, 256], help="sample counts (default 16 64 256)")
     c.add_argument("--rfilter", choices=["gaussian", "box"], default="gaussian",
                    help="the pixel filter written into the scene both render (default gaussian, as in the file)")
@@ -484,6 +519,8 @@ def main() -> None:
     if not any(x in ("compare", "refs", "-h", "--help") for x in argv):
         argv = ["compare", *argv]  # the default command
     a = p.parse_args(argv)
+    global SCENE_NAME
+    SCENE_NAME = getattr(a, "scene", "cbox")
 
     OUT.mkdir(parents=True, exist_ok=True)
     mi.set_variant(LLVM if LLVM in mi.variants() else SCALAR)  # Bitmap I/O needs a variant
