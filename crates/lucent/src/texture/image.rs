@@ -155,6 +155,10 @@ impl PartialEq for ImageTexture {
 /// `c` mapped into `[0, n)` by the wrap mode.
 fn wrap_index(c: i64, n: u32, wrap: Wrap) -> usize {
     let n = i64::from(n);
+    // Inside the image every mode keeps the index (and a lookup is spared two divisions).
+    if (0..n).contains(&c) {
+        return c as usize;
+    }
     let i = match wrap {
         Wrap::Repeat => c.rem_euclid(n),
         Wrap::Clamp => c.clamp(0, n - 1),
