@@ -11,7 +11,7 @@ pub mod splat;
 pub mod tonemap;
 
 use crate::Rgb;
-use lucent_accel::memory::filled_vec;
+use lucent_accel::memory::zeroed_vec;
 
 /// Linear radiance sums, weights and sample counts for a `width × height` image, row 0 at the
 /// top.
@@ -46,9 +46,9 @@ impl Film {
         Self {
             width,
             height,
-            sums: filled_vec(n, [0.0; 3]),
-            weights: filled_vec(n, 0.0),
-            samples: filled_vec(n, 0),
+            sums: zeroed_vec(n),
+            weights: zeroed_vec(n),
+            samples: zeroed_vec(n),
         }
     }
 
@@ -198,7 +198,7 @@ impl Film {
     pub fn to_srgb8(&self) -> Vec<u8> {
         use rayon::prelude::*;
         let width = self.width as usize;
-        let mut bytes = filled_vec(3 * self.sums.len(), 0);
+        let mut bytes = zeroed_vec(3 * self.sums.len());
         bytes
             .par_chunks_mut(3 * width.max(1))
             .enumerate()
