@@ -4,6 +4,7 @@
 use glam::Vec3;
 
 use crate::Rgb;
+use crate::lanes::{Real, V3};
 
 /// What a smooth dielectric boundary does to light arriving at `cos θi` ([`dielectric`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,7 +32,7 @@ impl DielectricFresnel {
 /// A relative index of refraction that the formulas can use: non-positive or non-finite values
 /// are taken as 1 (index-matched, no boundary) rather than producing NaN.
 #[inline]
-pub(super) fn sane_eta(eta: f32) -> f32 {
+pub(crate) fn sane_eta(eta: f32) -> f32 {
     if eta.is_finite() && eta > 0.0 {
         eta
     } else {
@@ -50,39 +51,53 @@ pub(super) fn sane_eta(eta: f32) -> f32 {
 /// `r_p = (η cos θi − cos θt)/(η cos θi + cos θt)`, and the unpolarised reflectance is their
 /// mean intensity `F = (r_s² + r_p²)/2`.
 pub fn dielectric(cos_i: f32, eta: f32) -> DielectricFresnel {
-    let eta = sane_eta(eta);
-    let (eta_it, eta_ti) = if cos_i >= 0.0 {
-        (eta, 1.0 / eta)
-    } else {
-        (1.0 / eta, eta)
-    };
-    let ci = cos_i.abs().min(1.0);
-    if eta == 1.0 {
-        // Index-matched: no boundary at all, the light goes straight on.
-        return DielectricFresnel {
-            r: 0.0,
-            cos_t: -cos_i,
-            eta_it,
-            eta_ti,
-        };
+    let f = dielectric_of(cos_i, sane_eta(eta));
+    DielectricFresnel {
+        r: f.r,
+        cos_t: f.cos_t,
+        eta_it: f.eta_it,
+        eta_ti: f.eta_ti,
     }
-    let cos_t2 = 1.0 - eta_ti * eta_ti * (1.0 - ci * ci);
-    if cos_t2 <= 0.0 {
-        return DielectricFresnel {
-            r: 1.0,
-            cos_t: 0.0,
-            eta_it,
-            eta_ti,
-        };
-    }
+}
+
+/// [`DielectricFresnel`] over a [`Real`]: the terms of [`dielectric`] for one path or for
+/// lanes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DielectricOf<R> {
+    pub r: R,
+    pub cos_t: R,
+    pub eta_it: R,
+    pub eta_ti: R,
+}
+
+/// [`dielectric`] written once over [`Real`], for an index already made sane
+/// ([`sane_eta`]): its branches (index-matched, total internal reflection) as lane masks.
+#[inline(always)]
+pub(crate) fn dielectric_of<R: Real>(cos_i: R, eta: R) -> DielectricOf<R> {
+    let (zero, one) = (R::splat(0.0), R::splat(1.0));
+    let outside = cos_i.ge(zero);
+    let inverse = one / eta;
+    let (eta_it, eta_ti) = (
+        R::select(outside, eta, inverse),
+        R::select(outside, inverse, eta),
+    );
+    let ci = cos_i.abs().min(one);
+    let cos_t2 = one - eta_ti * eta_ti * (one - ci * ci);
     let ct = cos_t2.sqrt();
-    // Both denominators are positive here (ct > 0), so grazing ci = 0 gives r_s = −1,
-    // r_p = 1 and F = 1 without a special case.
+    // Both denominators are positive where there is a transmitted ray (ct > 0), so grazing
+    // ci = 0 gives r_s = −1, r_p = 1 and F = 1 without a special case.
     let rs = (ci - eta_it * ct) / (ci + eta_it * ct);
     let rp = (eta_it * ci - ct) / (eta_it * ci + ct);
-    DielectricFresnel {
-        r: (0.5 * (rs * rs + rp * rp)).clamp(0.0, 1.0),
-        cos_t: if cos_i >= 0.0 { -ct } else { ct },
+    let r = (R::splat(0.5) * (rs * rs + rp * rp)).max(zero).min(one);
+    let cos_t = R::select(outside, -ct, ct);
+    // Total internal reflection: everything reflected, nothing transmitted.
+    let total = cos_t2.le(zero);
+    let (r, cos_t) = (R::select(total, one, r), R::select(total, zero, cos_t));
+    // Index-matched: no boundary at all, the light goes straight on.
+    let matched = eta.eq(one);
+    DielectricOf {
+        r: R::select(matched, zero, r),
+        cos_t: R::select(matched, -cos_i, cos_t),
         eta_it,
         eta_ti,
     }
@@ -95,6 +110,12 @@ pub fn dielectric(cos_i: f32, eta: f32) -> DielectricFresnel {
 /// `η_ti`, the normal part `cos θt`.
 #[inline]
 pub fn refract(w: Vec3, m: Vec3, f: &DielectricFresnel) -> Vec3 {
+    m * (w.dot(m) * f.eta_ti + f.cos_t) - w * f.eta_ti
+}
+
+/// [`refract`] over a [`Real`].
+#[inline(always)]
+pub(crate) fn refract_of<R: Real>(w: V3<R>, m: V3<R>, f: &DielectricOf<R>) -> V3<R> {
     m * (w.dot(m) * f.eta_ti + f.cos_t) - w * f.eta_ti
 }
 

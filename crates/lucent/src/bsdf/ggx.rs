@@ -33,6 +33,17 @@ pub trait Facets<R: Real>: Copy {
     }
     /// A normal drawn from those visible from `v` (`v.z ≥ 0`) with the numbers `u`.
     fn sample_visible(self, v: V3<R>, u: (R, R)) -> V3<R>;
+    /// The density of [`Facets::sample_visible`] at `m`: `G1(v, m)·max(0, v·m)·D(m) / cos θv`.
+    #[inline(always)]
+    fn visible_pdf(self, v: V3<R>, m: V3<R>) -> R {
+        let cos_vm = v.dot(m);
+        let zero = R::splat(0.0);
+        R::select(
+            cos_vm.le(zero),
+            zero,
+            self.g1_over_cos(v, m) * cos_vm * self.d(m),
+        )
+    }
 }
 
 impl<R: Real> Facets<R> for Ggx<R> {

@@ -215,11 +215,7 @@ impl Microfacet {
     /// distribution of visible normals `D_v(m) = G1(v, m)·max(0, v·m)·D(m) / cos θv`
     /// (Heitz 2014), for `v.z ≥ 0`.
     pub fn visible_pdf(self, v: Vec3, m: Vec3) -> f32 {
-        let cos_vm = v.dot(m);
-        if cos_vm <= 0.0 {
-            return 0.0;
-        }
-        self.g1_over_cos(v, m) * cos_vm * self.d(m)
+        Facets::visible_pdf(self, v.into(), m.into())
     }
 }
 

@@ -60,7 +60,7 @@ mod plastic;
 pub mod principled;
 pub mod principled_thin;
 pub(crate) mod rough_conductor;
-mod rough_dielectric;
+pub(crate) mod rough_dielectric;
 pub mod rough_plastic;
 pub mod sheen;
 mod thin_dielectric;

@@ -22,14 +22,15 @@
 
 use glam::{Vec2, Vec3};
 
+use super::ggx::Facets;
 use super::microfacet::Microfacet;
 use super::{BsdfSample, Transport, fresnel};
 use crate::Rgb;
-use crate::optics::reflect;
+use crate::lanes::{Real, V3};
 
 /// Relative indices closer to 1 than this are index-matched: the refraction lobe collapses to a
 /// straight-through Dirac delta (its Jacobian is singular at η' = 1) and nothing reflects.
-const INDEX_MATCHED: f32 = 1e-3;
+pub(crate) const INDEX_MATCHED: f32 = 1e-3;
 
 /// The rough dielectric's parameters.
 pub(super) struct RoughDielectric {
@@ -39,16 +40,141 @@ pub(super) struct RoughDielectric {
     facets: Microfacet,
 }
 
-/// The generalized half vector of a pair of directions and what eval and pdf share.
-struct Half {
+/// The generalized half vector of a pair of directions and what eval and pdf share, written
+/// once over [`Real`] ([`half`]).
+struct Half<R: Real> {
+    /// A facet links the two directions (neither grazing, neither seeing a facet's back).
+    linked: R::Mask,
     /// The microfacet normal, upper hemisphere.
-    m: Vec3,
+    m: V3<R>,
     /// Reflection (both on the same side) or refraction.
-    reflect: bool,
+    reflect: R::Mask,
     /// `η'`, the relative index in the direction of travel from `wo`.
-    eta_it: f32,
+    eta_it: R,
     /// `wo·m + η'·wi·m` (refraction only; its square is the Jacobian's denominator).
-    denom: f32,
+    denom: R,
+}
+
+/// What a rough dielectric's value and density for `(wo, wi)` are without colours: where they
+/// are not zero, whether `wi` is reflected, the factor of `specular` or `transmittance`, and
+/// the density ([`value_and_pdf`]).
+pub(crate) struct Scatter<R: Real> {
+    pub linked: R::Mask,
+    pub reflect: R::Mask,
+    pub value: R,
+    pub pdf: R,
+}
+
+/// A rough dielectric's sample without colours ([`sampled`]): where there is one, whether it
+/// reflects (a factor of `specular`, else of `transmittance`), the direction, the factor and
+/// the density.
+pub(crate) struct Sampled<R: Real> {
+    pub ok: R::Mask,
+    pub reflect: R::Mask,
+    pub wi: V3<R>,
+    pub weight: R,
+    pub pdf: R,
+}
+
+/// The half vector of `wo` and `wi` for a sane index `eta` that is not index-matched.
+#[inline(always)]
+fn half<R: Real>(eta: R, wo: V3<R>, wi: V3<R>) -> Half<R> {
+    let zero = R::splat(0.0);
+    let reflect = (wo.z * wi.z).gt(zero);
+    let eta_it = R::select(wo.z.gt(zero), eta, R::splat(1.0) / eta);
+    let h = V3::select(reflect, wo + wi, wo + wi * eta_it);
+    let len = h.length_squared().sqrt();
+    // |wo + η' wi| vanishes only for η' = 1 (excluded) and wi = −wo.
+    let m = V3::select(h.z.lt(zero), (-h) / len, h / len);
+    let (cos_om, cos_im) = (wo.dot(m), wi.dot(m));
+    let grazing = wo.z.eq(zero) | wi.z.eq(zero);
+    let backs = (cos_om * wo.z).le(zero) | (cos_im * wi.z).le(zero);
+    Half {
+        linked: !grazing & len.gt(R::splat(1e-6)) & !backs,
+        m,
+        reflect,
+        eta_it,
+        denom: cos_om + eta_it * cos_im,
+    }
+}
+
+/// `wo` turned into the upper hemisphere, the direction whose visible normals are sampled.
+#[inline(always)]
+fn viewer<R: Real>(wo: V3<R>) -> V3<R> {
+    V3::select(wo.z.lt(R::splat(0.0)), -wo, wo)
+}
+
+/// `f·|cos θi|` and the density by the formulas above, without colours, for a sane index `eta`
+/// that is not index-matched; `importance` scales refraction by `η'²`.
+#[inline(always)]
+pub(crate) fn value_and_pdf<R: Real>(
+    facets: impl Facets<R>,
+    eta: R,
+    (wo, wi): (V3<R>, V3<R>),
+    importance: bool,
+) -> Scatter<R> {
+    let one = R::splat(1.0);
+    let h = half(eta, wo, wi);
+    let cos_om = wo.dot(h.m);
+    let f = fresnel::dielectric_of(cos_om, eta).r;
+    // G1(wo)/|cos θo| kept as one finite factor.
+    let dg = facets.d(h.m) * facets.g1_over_cos(wo, h.m) * facets.g1(wi, h.m);
+    let cos_im = wi.dot(h.m);
+    let scale = if importance { h.eta_it * h.eta_it } else { one };
+    let refracted = (one - f) * dg * (cos_om * cos_im).abs() / (h.denom * h.denom) * scale;
+    let value = R::select(h.reflect, f * dg * R::splat(0.25), refracted);
+    let visible = facets.visible_pdf(viewer(wo), h.m);
+    let abs_im = cos_im.abs();
+    let pdf = R::select(
+        h.reflect,
+        visible * f / (R::splat(4.0) * abs_im),
+        visible * (one - f) * h.eta_it * h.eta_it * abs_im / (h.denom * h.denom),
+    );
+    Scatter {
+        linked: h.linked,
+        reflect: h.reflect,
+        value,
+        pdf,
+    }
+}
+
+/// A visible facet, then its reflection (`u_lobe < F`) or refraction, without colours, for a
+/// sane index `eta` that is not index-matched; `importance` leaves refraction unscaled.
+#[inline(always)]
+pub(crate) fn sampled<R: Real>(
+    facets: impl Facets<R>,
+    eta: R,
+    wo: V3<R>,
+    (u_lobe, u): (R, (R, R)),
+    importance: bool,
+) -> Sampled<R> {
+    let (zero, one) = (R::splat(0.0), R::splat(1.0));
+    let v = viewer(wo);
+    let m = facets.sample_visible(v, u);
+    let visible = facets.visible_pdf(v, m);
+    let cos_om = wo.dot(m);
+    let seen = !(wo.z.eq(zero) | visible.le(zero) | (cos_om * wo.z).le(zero));
+    let f = fresnel::dielectric_of(cos_om, eta);
+    let reflect = u_lobe.lt(f.r);
+    // Reflected: the facet may send the light through the macro-surface (no such path).
+    let wr = (-wo).reflect(m);
+    let reflected_ok = !(wr.z * wo.z).le(zero);
+    let pdf_r = visible * f.r / (R::splat(4.0) * wr.dot(m).abs());
+    // Refracted: it must cross the macro-surface.
+    let wt = fresnel::refract_of(wo, m, &f).normalize_or(Vec3::ZERO);
+    let refracted_ok = !(wt.z * wo.z).ge(zero);
+    let cos_im = wt.dot(m);
+    let denom = cos_om + f.eta_it * cos_im;
+    let scale = if importance { one } else { f.eta_ti * f.eta_ti };
+    let pdf_t = visible * (one - f.r) * f.eta_it * f.eta_it * cos_im.abs() / (denom * denom);
+    let wi = V3::select(reflect, wr, wt);
+    Sampled {
+        ok: seen & ((reflect & reflected_ok) | (!reflect & refracted_ok)),
+        reflect,
+        wi,
+        weight: R::select(reflect, facets.g1(wr, m), facets.g1(wt, m) * scale),
+        pdf: R::select(reflect, pdf_r, pdf_t),
+    }
 }
 
 impl RoughDielectric {
@@ -70,73 +196,31 @@ impl RoughDielectric {
         self.index_matched()
     }
 
-    /// The half vector of `wo` and `wi`, or `None` when no facet links them: a grazing
-    /// direction, or a facet seen from its back by either direction.
-    fn half(&self, wo: Vec3, wi: Vec3) -> Option<Half> {
-        if wo.z == 0.0 || wi.z == 0.0 || self.index_matched() {
+    /// The value and density without colours, `None` where both are zero (index-matched glass
+    /// has only its Dirac lobe).
+    fn scatter(&self, wo: Vec3, wi: Vec3, mode: Transport) -> Option<Scatter<f32>> {
+        if self.index_matched() {
             return None;
         }
-        let reflect = wo.z * wi.z > 0.0;
-        let eta_it = if wo.z > 0.0 { self.eta } else { 1.0 / self.eta };
-        let h = if reflect { wo + wi } else { wo + eta_it * wi };
-        let len = h.length();
-        // |wo + η' wi| vanishes only for η' = 1 (excluded above) and wi = −wo.
-        if len.is_nan() || len <= 1e-6 {
-            return None;
-        }
-        let m = if h.z < 0.0 { -h / len } else { h / len };
-        let (cos_om, cos_im) = (wo.dot(m), wi.dot(m));
-        if cos_om * wo.z <= 0.0 || cos_im * wi.z <= 0.0 {
-            return None;
-        }
-        Some(Half {
-            m,
-            reflect,
-            eta_it,
-            denom: cos_om + eta_it * cos_im,
-        })
+        let importance = mode == Transport::Importance;
+        let s = value_and_pdf(self.facets, self.eta, (wo.into(), wi.into()), importance);
+        s.linked.then_some(s)
     }
 
-    /// `wo` turned into the upper hemisphere, the direction whose visible normals are sampled.
-    fn viewer(wo: Vec3) -> Vec3 {
-        if wo.z < 0.0 { -wo } else { wo }
-    }
-
-    /// `f·|cos θi|` by the formulas above, with `G1(wo)/|cos θo|` kept as one finite factor.
+    /// `f·|cos θi|` by the formulas above.
     pub fn eval(&self, wo: Vec3, wi: Vec3, mode: Transport) -> Rgb {
-        let Some(h) = self.half(wo, wi) else {
-            return Rgb::BLACK;
-        };
-        let g = self.facets;
-        let cos_om = wo.dot(h.m);
-        let f = fresnel::dielectric(cos_om, self.eta).r;
-        let dg = g.d(h.m) * g.g1_over_cos(wo, h.m) * g.g1(wi, h.m);
-        if h.reflect {
-            return self.specular * (f * dg * 0.25);
+        match self.scatter(wo, wi, mode) {
+            None => Rgb::BLACK,
+            Some(s) if s.reflect => self.specular * s.value,
+            Some(s) => self.transmittance * s.value,
         }
-        let cos_im = wi.dot(h.m);
-        let scale = match mode {
-            Transport::Radiance => 1.0,
-            Transport::Importance => h.eta_it * h.eta_it,
-        };
-        let value = (1.0 - f) * dg * (cos_om * cos_im).abs() / (h.denom * h.denom) * scale;
-        self.transmittance * value
     }
 
     /// `D_wo(m)·F·/(4|wi·m|)` for reflection, `D_wo(m)·(1 − F)·η'²|wi·m|/(wo·m + η' wi·m)²`
     /// for refraction.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let Some(h) = self.half(wo, wi) else {
-            return 0.0;
-        };
-        let visible = self.facets.visible_pdf(Self::viewer(wo), h.m);
-        let f = fresnel::dielectric(wo.dot(h.m), self.eta).r;
-        let cos_im = wi.dot(h.m).abs();
-        if h.reflect {
-            visible * f / (4.0 * cos_im)
-        } else {
-            visible * (1.0 - f) * h.eta_it * h.eta_it * cos_im / (h.denom * h.denom)
-        }
+        self.scatter(wo, wi, Transport::Radiance)
+            .map_or(0.0, |s| s.pdf)
     }
 
     /// A visible facet, then its reflection (`u_lobe < F`) or refraction.
@@ -153,41 +237,22 @@ impl RoughDielectric {
                 delta: true,
             });
         }
-        let v = Self::viewer(wo);
-        let m = self.facets.sample_visible(v, u);
-        let visible = self.facets.visible_pdf(v, m);
-        let cos_om = wo.dot(m);
-        if visible <= 0.0 || cos_om * wo.z <= 0.0 {
-            return None;
-        }
-        let f = fresnel::dielectric(cos_om, self.eta);
-        if u_lobe < f.r {
-            let wi = reflect(-wo, m);
-            // The facet may send the light through the macro-surface: no such path.
-            if wi.z * wo.z <= 0.0 {
-                return None;
-            }
-            return Some(BsdfSample {
-                wi,
-                weight: self.specular * self.facets.g1(wi, m),
-                pdf: visible * f.r / (4.0 * wi.dot(m).abs()),
-                delta: false,
-            });
-        }
-        let wi = fresnel::refract(wo, m, &f).normalize_or_zero();
-        if wi.z * wo.z >= 0.0 {
-            return None;
-        }
-        let cos_im = wi.dot(m);
-        let denom = cos_om + f.eta_it * cos_im;
-        let scale = match mode {
-            Transport::Radiance => f.eta_ti * f.eta_ti,
-            Transport::Importance => 1.0,
-        };
-        Some(BsdfSample {
-            wi,
-            weight: self.transmittance * (self.facets.g1(wi, m) * scale),
-            pdf: visible * (1.0 - f.r) * f.eta_it * f.eta_it * cos_im.abs() / (denom * denom),
+        let importance = mode == Transport::Importance;
+        let s = sampled(
+            self.facets,
+            self.eta,
+            wo.into(),
+            (u_lobe, (u.x, u.y)),
+            importance,
+        );
+        s.ok.then(|| BsdfSample {
+            wi: s.wi.into(),
+            weight: if s.reflect {
+                self.specular * s.weight
+            } else {
+                self.transmittance * s.weight
+            },
+            pdf: s.pdf,
             delta: false,
         })
     }
@@ -212,8 +277,10 @@ mod tests {
         ] {
             let f = fresnel::dielectric(wo.dot(m), 1.5);
             let wi = fresnel::refract(wo, m, &f);
-            let h = b.half(wo, wi).expect("a refraction");
-            assert!(!h.reflect && (h.m - m).length() < 1e-5, "{} vs {m}", h.m);
+            let h = half(b.eta, wo.into(), wi.into());
+            let found = Vec3::from(h.m);
+            assert!(h.linked && !h.reflect, "a refraction");
+            assert!((found - m).length() < 1e-5, "{found} vs {m}");
         }
     }
 

@@ -1,30 +1,28 @@
 //! What each surface lanes know does in a lane group: the light sample's BSDF value and
 //! density and the BSDF sample, in lanes where the material's code is written once over
-//! [`Real`] (Lambert, a smooth or a GGX-rough conductor), per lane where it is not (glass).
+//! [`Real`] (Lambert, a smooth conductor), per lane where it is not (smooth glass); the shared
+//! steps (a light's direction in the frame, the leak test). The rough surfaces are `rough.rs`.
 
 use glam::{Vec2, Vec3};
 use wide::f32x8;
 
 use crate::Rgb;
-use crate::bsdf::ggx::Ggx;
 use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
-use crate::bsdf::rough_conductor::{Reflection, mirrored, reflection};
 use crate::bsdf::{Bsdf, Frame, FrameOf, Transport};
 use crate::lanes::{Mask as _, Real, V3};
 use crate::material::{ScatteringSample, unleaked};
 
 /// Smooth glass's sample in one lane, as `Scattering::sample` draws it from its one part of
-/// weight 1: the lobe's number rescaled to the part (itself, clamped below 1), the scalar
-/// BSDF's sample in the frame, then the direction in the world and the leak test
-/// ([`unleaked`]); the weight and density times 1, the same bits.
+/// weight 1: with the lobe's number `u_part` already rescaled to the part (itself, clamped
+/// below 1), the scalar BSDF's sample in the frame, then the direction in the world and the
+/// leak test ([`unleaked`]); the weight and density times 1, the same bits.
 #[inline(always)]
 pub(super) fn glass_sample(
     frame: &Frame,
     (wo, wo_local, ng): (Vec3, Vec3, Vec3),
-    u_lobe: f32,
+    u_part: f32,
     (eta, specular, transmittance): (f32, Rgb, Rgb),
 ) -> Option<ScatteringSample> {
-    let u_part = u_lobe.clamp(0.0, 1.0 - f32::EPSILON);
     let bsdf = Bsdf::Dielectric {
         eta,
         specular,
@@ -75,9 +73,7 @@ pub(super) fn lambert_value_and_pdf(
     wi: V3<f32x8>,
 ) -> ((f32x8, f32x8), f32x8) {
     let zero = f32x8::ZERO;
-    let local = frame.to_local(wi);
-    // Part::local: the shading and the geometric normal put wi on the same side.
-    let consistent = wi.dot(ng).gt(zero).same(local.z.gt(zero));
+    let (consistent, local) = light_local(frame, ng, wi);
     let (front, cos_over_pi) = lambert_eval(wo_local, local);
     // Bsdf::pdf keeps only finite, positive densities (Scattering::eval_pdf's sum over one part
     // of weight 1, divided by the total weight 1, gives the same bits).
@@ -115,7 +111,7 @@ pub(super) fn lambert_bounce(
 ///
 /// [`Scattering`]: crate::material::Scattering
 #[inline(always)]
-fn unleaked_lanes(
+pub(super) fn unleaked_lanes(
     frame: &FrameOf<f32x8>,
     ng: V3<f32x8>,
     (wo, wo_local): (V3<f32x8>, V3<f32x8>),
@@ -128,92 +124,15 @@ fn unleaked_lanes(
     (same_side.same(reflected), wi)
 }
 
-/// For a light along world direction `wi`, at a rough conductor of facets `ggx`: where `wi`
-/// does not leak through the surface (the mask), and the colourless terms of its value and
-/// density ([`reflection`]).
+/// A light's world direction `wi` in the frame, and where it does not leak: the shading and the
+/// geometric normal put it on the same side (`Part::local`).
 #[inline(always)]
-pub(super) fn rough_value_and_pdf(
+pub(super) fn light_local(
     frame: &FrameOf<f32x8>,
     ng: V3<f32x8>,
-    wo_local: V3<f32x8>,
     wi: V3<f32x8>,
-    ggx: Ggx<f32x8>,
-) -> (f32x8, Reflection<f32x8>) {
+) -> (f32x8, V3<f32x8>) {
     let local = frame.to_local(wi);
-    // Part::local: the shading and the geometric normal put wi on the same side.
     let consistent = wi.dot(ng).gt(f32x8::ZERO).same(local.z.gt(f32x8::ZERO));
-    (consistent, reflection(ggx, wo_local, local))
-}
-
-/// A rough conductor's value and density for a light in one lane, from the lanes' colourless
-/// terms `r` (lane `j`) where the light does not leak (`consistent`): `RoughConductor::eval`
-/// and `pdf`, then `Bsdf`'s guards (Scattering::eval_pdf's sum over one part of weight 1 gives
-/// the same bits).
-#[inline(always)]
-pub(super) fn rough_light_lane(
-    r: &Reflection<f32x8>,
-    consistent: bool,
-    j: usize,
-    (eta, k, specular): (Rgb, Rgb, Rgb),
-) -> (Rgb, f32) {
-    if !consistent {
-        return (Rgb::BLACK, 0.0);
-    }
-    let front = r.front.to_bitmask() & (1 << j) != 0;
-    let (value, pdf) = (r.value.as_array()[j], r.pdf.as_array()[j]);
-    let f = if front && value > 0.0 {
-        specular * crate::bsdf::fresnel::conductor(r.cos.as_array()[j], eta, k) * value
-    } else {
-        Rgb::BLACK
-    };
-    let f = if f.is_finite() { f } else { Rgb::BLACK };
-    let pdf = if front { pdf } else { 0.0 };
-    (
-        f,
-        if pdf.is_finite() && pdf > 0.0 {
-            pdf
-        } else {
-            0.0
-        },
-    )
-}
-
-/// A rough conductor's BSDF sample in lanes from `(ux, uy)`: where it is usable (the mask:
-/// the viewer and the mirrored direction above the surface, not leaking through it), the
-/// world direction, the Fresnel cosine, `G1(wi, m)` and the density. The lane's weight is
-/// `specular·F(cos)·G1`, its last test [`rough_sample_lane`]'s.
-#[inline(always)]
-pub(super) fn rough_bounce(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
-    (wo, wo_local): (V3<f32x8>, V3<f32x8>),
-    ggx: Ggx<f32x8>,
-    u: (f32x8, f32x8),
-) -> (f32x8, V3<f32x8>, (f32x8, f32x8, f32x8)) {
-    let s = mirrored(ggx, wo_local, u);
-    let finite = s.wi.x.finite() & s.wi.y.finite() & s.wi.z.finite();
-    let (unleaked, wi) = unleaked_lanes(frame, ng, (wo, wo_local), s.wi);
-    let ok = wo_local.z.gt(f32x8::ZERO) & s.above & finite & unleaked;
-    (ok, wi, (s.cos, s.g1, s.pdf))
-}
-
-/// A rough conductor's sample in lane `j` of [`rough_bounce`]'s: the weight
-/// `specular·F(wo·m)·G1(wi, m)`, kept where `Bsdf::sample` keeps it (a positive finite density,
-/// a finite weight that is not black). Scattering::sample's one part of weight 1: the same
-/// bits.
-#[inline(always)]
-pub(super) fn rough_sample_lane(
-    wi: Vec3,
-    (cos, g1, pdf): (f32, f32, f32),
-    (eta, k, specular): (Rgb, Rgb, Rgb),
-) -> Option<ScatteringSample> {
-    let weight = specular * crate::bsdf::fresnel::conductor(cos, eta, k) * g1;
-    let useful = pdf > 0.0 && pdf.is_finite() && weight.is_finite() && !weight.is_black();
-    useful.then_some(ScatteringSample {
-        wi,
-        weight,
-        pdf,
-        delta: false,
-        reflected: true,
-    })
+    (consistent, local)
 }

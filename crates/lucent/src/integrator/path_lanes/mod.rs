@@ -13,6 +13,7 @@
 //! lanes or without, on any number of threads.
 
 mod lobes;
+mod rough;
 mod scatter;
 mod surfaces;
 #[cfg(test)]

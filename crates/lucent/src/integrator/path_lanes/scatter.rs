@@ -7,9 +7,10 @@ use glam::{Vec2, Vec3};
 use wide::f32x8;
 
 use super::LaneHit;
-use super::lobes::{
-    glass_sample, lambert_bounce, lambert_value_and_pdf, mirror_bounce, rough_bounce,
-    rough_light_lane, rough_sample_lane, rough_value_and_pdf,
+use super::lobes::{glass_sample, lambert_bounce, lambert_value_and_pdf, mirror_bounce};
+use super::rough::{
+    rough_bounce, rough_glass_bounce, rough_glass_light_lane, rough_glass_sample_lane,
+    rough_glass_value_and_pdf, rough_light_lane, rough_sample_lane, rough_value_and_pdf,
 };
 use super::surfaces::LaneBsdf;
 use crate::Rgb;
@@ -56,8 +57,7 @@ impl PathTracer {
         let geometry: [Geometry; LANES] = std::array::from_fn(|j| Geometry::of_hit(&of(j).hit));
         let ns = V3::gather(&std::array::from_fn(|j| geometry[j].n));
         let dpdu = V3::gather(&std::array::from_fn(|j| geometry[j].dpdu));
-        let flip = ng.dot(dir).gt(f32x8::ZERO)
-            & mask(&|h| h.two_sided && !matches!(h.bsdf, LaneBsdf::Glass { .. }));
+        let flip = ng.dot(dir).gt(f32x8::ZERO) & mask(&|h| h.two_sided && !h.bsdf.transmits());
         let (ns, ng) = (V3::select(flip, -ns, ns), V3::select(flip, -ng, ng));
         let ns = facing_lanes(ns, ng, wo);
         let frame = FrameOf::from_normal_tangent(ns, dpdu);
@@ -71,9 +71,13 @@ impl PathTracer {
         let samplers_of = |lanes: &[usize], pick: fn(&Arrival) -> Sampler| -> ArrayVec<_, LANES> {
             lanes.iter().map(|&j| pick(&batch[j].at)).collect()
         };
-        // Lambert and rough conductors: the surfaces with lobes that are not Dirac deltas.
-        let diffuse =
-            lanes_of(|b| matches!(b, LaneBsdf::Lambert(_) | LaneBsdf::RoughMirror { .. }));
+        // Lambert and the rough surfaces: those with lobes that are not Dirac deltas.
+        let diffuse = lanes_of(|b| {
+            matches!(
+                b,
+                LaneBsdf::Lambert(_) | LaneBsdf::RoughMirror { .. } | LaneBsdf::RoughGlass { .. }
+            )
+        });
         let mut samplers = samplers_of(&diffuse, |at| at.u_light);
         let u_pick = Sampler::next_1d_lanes(&mut samplers);
         let u_light = Sampler::next_2d_lanes(&mut samplers);
@@ -89,19 +93,29 @@ impl PathTracer {
             lights[j].map_or(Vec3::Z, |s| s.wi)
         }));
         let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
-        // GGX facets where the surface is a rough conductor (roughness 1 elsewhere).
-        let alphas: [(f32, f32); LANES] = std::array::from_fn(|j| match of(j).bsdf {
-            LaneBsdf::RoughMirror { alpha, .. } => alpha,
-            _ => (1.0, 1.0),
-        });
+        // GGX facets where the surface is rough (roughness 1 elsewhere), glass's index (1.5
+        // elsewhere).
+        let (alphas, etas): ([(f32, f32); LANES], [f32; LANES]) = (
+            std::array::from_fn(|j| match of(j).bsdf {
+                LaneBsdf::RoughMirror { alpha, .. } | LaneBsdf::RoughGlass { alpha, .. } => alpha,
+                _ => (1.0, 1.0),
+            }),
+            std::array::from_fn(|j| match of(j).bsdf {
+                LaneBsdf::RoughGlass { eta, .. } => eta,
+                _ => 1.5,
+            }),
+        );
         let ggx = Ggx {
             alpha_u: f32x8::new(alphas.map(|a| a.0)),
             alpha_v: f32x8::new(alphas.map(|a| a.1)),
         };
-        let rough = batch
-            .iter()
-            .any(|h| matches!(h.bsdf, LaneBsdf::RoughMirror { .. }));
+        let glass_facets = (ggx, f32x8::new(etas));
+        let any = |kind: fn(&LaneBsdf) -> bool| batch.iter().any(|h| kind(&h.bsdf));
+        let rough = any(|b| matches!(b, LaneBsdf::RoughMirror { .. }));
+        let rough_glass = any(|b| matches!(b, LaneBsdf::RoughGlass { .. }));
         let rough_light = rough.then(|| rough_value_and_pdf(&frame, ng, wo_local, wi, ggx));
+        let rough_glass_light =
+            rough_glass.then(|| rough_glass_value_and_pdf(&frame, ng, wo_local, wi, glass_facets));
 
         // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
         // direction's drawn (a mirror draws none).
@@ -120,11 +134,17 @@ impl PathTracer {
         let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
         let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
         let rough_sample = rough.then(|| rough_bounce(&frame, ng, (wo, wo_local), ggx, (ux, uy)));
-        // Glass picks reflection or refraction with the lobe's number (its direction's
-        // numbers are not used).
-        let glass = lanes_of(|b| matches!(b, LaneBsdf::Glass { .. }));
+        // Glass picks reflection or refraction with the lobe's number (smooth glass's
+        // direction's numbers are not used; rough glass's are the facet's, above), rescaled to
+        // its one part as Scattering::sample rescales it (itself, clamped below 1).
+        let glass = lanes_of(|b| b.transmits());
         let mut samplers = samplers_of(&glass, |at| at.u_bsdf);
-        let u_lobe = at_lanes(&glass, Sampler::next_1d_lanes(&mut samplers), 0.0);
+        let u_lobe = at_lanes(&glass, Sampler::next_1d_lanes(&mut samplers), 0.0)
+            .map(|u| u.clamp(0.0, 1.0 - f32::EPSILON));
+        let rough_glass_sample = rough_glass.then(|| {
+            let u = (f32x8::new(u_lobe), (ux, uy));
+            rough_glass_bounce(&frame, ng, (wo, wo_local), glass_facets, u)
+        });
 
         let (front, cosine_ok, mirror_ok) = (
             front.to_bitmask(),
@@ -194,6 +214,26 @@ impl PathTracer {
                         let terms = (cos.as_array()[j], g1.as_array()[j], pdf.as_array()[j]);
                         let ok = ok.to_bitmask() & (1 << j) != 0;
                         ok.then(|| rough_sample_lane(wi.lane(j), terms, colours))
+                            .flatten()
+                    })
+                }
+                LaneBsdf::RoughGlass {
+                    specular,
+                    transmittance,
+                    ..
+                } => {
+                    let tints = (specular, transmittance);
+                    if let (Some(s), Some((consistent, r))) = (&lights[j], &rough_glass_light) {
+                        let consistent = consistent.to_bitmask() & (1 << j) != 0;
+                        let f_pdf = rough_glass_light_lane(r, consistent, j, tints);
+                        let light = light_through(scene, &h.hit, s, f_pdf, true, stats);
+                        path.l += path.beta * light;
+                    }
+                    rough_glass_sample.as_ref().and_then(|(ok, wi, s)| {
+                        let wo_z = wo_local.z.as_array()[j];
+                        let usable = ok.to_bitmask() & (1 << j) != 0;
+                        usable
+                            .then(|| rough_glass_sample_lane((wi.lane(j), s, j), wo_z, tints))
                             .flatten()
                     })
                 }

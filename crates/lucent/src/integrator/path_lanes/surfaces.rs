@@ -2,6 +2,8 @@
 
 use crate::Rgb;
 use crate::bsdf::Distribution;
+use crate::bsdf::fresnel::sane_eta;
+use crate::bsdf::rough_dielectric::INDEX_MATCHED;
 use crate::material::{Roughness, Surface};
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
@@ -47,6 +49,14 @@ enum LaneSurface<'a> {
         specular: &'a Texture,
         transmittance: &'a Texture,
     },
+    /// Rough glass with GGX facets (Mitsuba's `roughdielectric`), its index made sane and not
+    /// index-matched.
+    RoughGlass {
+        eta: f32,
+        specular: &'a Texture,
+        transmittance: &'a Texture,
+        roughness: &'a Roughness,
+    },
 }
 
 /// What a lane's surface is at its hit, textures evaluated.
@@ -69,13 +79,29 @@ pub(super) enum LaneBsdf {
         specular: Rgb,
         transmittance: Rgb,
     },
+    /// Rough glass's index, tints and GGX roughness (tangent, bitangent; clamped).
+    RoughGlass {
+        eta: f32,
+        specular: Rgb,
+        transmittance: Rgb,
+        alpha: (f32, f32),
+    },
+}
+
+impl LaneBsdf {
+    /// Whether it transmits (glass): a two-sided reflector's normals turn round when it is
+    /// seen from the back, glass's do not; and glass picks its lobe with a number.
+    pub(super) fn transmits(&self) -> bool {
+        matches!(self, LaneBsdf::Glass { .. } | LaneBsdf::RoughGlass { .. })
+    }
 }
 
 impl<'a> LaneMaterials<'a> {
     /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`),
-    /// smooth conductors (`conductor`), rough conductors with GGX facets (`roughconductor`)
-    /// and smooth glass (`dielectric`), their parameters colours or textures. Any other
-    /// material is shaded per path.
+    /// smooth conductors (`conductor`), rough conductors with GGX facets (`roughconductor`),
+    /// smooth glass (`dielectric`) and rough glass with GGX facets (`roughdielectric`, not
+    /// index-matched), their parameters colours or textures. Any other material is shaded per
+    /// path.
     pub fn of(scene: &'a Scene) -> Self {
         let lanes = scene
             .materials
@@ -110,6 +136,21 @@ impl<'a> LaneMaterials<'a> {
                         specular,
                         transmittance,
                     },
+                    Surface::Dielectric {
+                        eta,
+                        specular,
+                        transmittance,
+                        roughness: Some(roughness),
+                    } if roughness.distribution == Distribution::Ggx
+                        && (sane_eta(*eta) - 1.0).abs() >= INDEX_MATCHED =>
+                    {
+                        LaneSurface::RoughGlass {
+                            eta: sane_eta(*eta),
+                            specular,
+                            transmittance,
+                            roughness,
+                        }
+                    }
                     _ => return None,
                 };
                 Some(LaneMaterial {
@@ -174,6 +215,20 @@ pub(super) fn bsdf_at(
                 eta: eval(eta),
                 k: eval(k),
                 specular: eval(specular),
+                alpha: roughness.at(&at, &scene.images).alphas(),
+            }
+        }
+        LaneSurface::RoughGlass {
+            eta,
+            specular,
+            transmittance,
+            roughness,
+        } => {
+            let at = scene.tex_coords(material, hit, footprint);
+            LaneBsdf::RoughGlass {
+                eta,
+                specular: eval(specular),
+                transmittance: eval(transmittance),
                 alpha: roughness.at(&at, &scene.images).alphas(),
             }
         }

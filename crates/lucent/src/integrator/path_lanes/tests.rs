@@ -13,9 +13,9 @@ use glam::Vec3;
 
 /// An open box of Lambertian walls (one two-sided, one seen from behind through the open
 /// side), a Lambertian ball, a metal one, a glass one, a rough metal one (GGX, anisotropic,
-/// its roughness a texture) and a rough metal one that lanes do not know (Beckmann), a
-/// rectangular light, a point light and a grey sky: paths that go through lanes, per path,
-/// and between the two.
+/// its roughness a texture), a rough glass one (GGX) and a rough metal one that lanes do not
+/// know (Beckmann), a rectangular light, a point light and a grey sky: paths that go through
+/// lanes, per path, and between the two.
 fn mixed_scene() -> Scene {
     let camera = Camera::new(Vec3::new(0.2, 0.1, 3.5), Vec3::ZERO, Vec3::Y, 50.0, 16, 16);
     let mut b = SceneBuilder::new(camera.unwrap());
@@ -70,6 +70,22 @@ fn mixed_scene() -> Scene {
     });
     let ggx = b.material(rough(Distribution::Ggx, ggx_alpha));
     let beckmann = b.material(rough(Distribution::Beckmann, Texture::from(0.3)));
+    let rough_glass = b.material(
+        Material::physically_based(
+            Surface::Dielectric {
+                eta: 1.33,
+                specular: Texture::from(1.0),
+                transmittance: Texture::from(Rgb::new(0.8, 0.95, 1.0)),
+                roughness: Some(Roughness {
+                    distribution: Distribution::Ggx,
+                    alpha_u: Texture::from(0.25),
+                    alpha_v: Texture::from(0.1),
+                }),
+            },
+            &[],
+        )
+        .0,
+    );
     let glass = b.material(
         Material::physically_based(
             Surface::Dielectric {
@@ -126,6 +142,7 @@ fn mixed_scene() -> Scene {
     for (center, radius, material) in [
         (Vec3::new(-0.55, 0.35, -0.5), 0.3, ggx),
         (Vec3::new(0.6, 0.4, -0.5), 0.25, beckmann),
+        (Vec3::new(-0.25, 0.35, 0.6), 0.22, rough_glass),
     ] {
         b.sphere(Sphere { center, radius }, material);
     }
@@ -142,7 +159,17 @@ fn lanes_give_the_scalar_paths_bits() {
     let scene = mixed_scene();
     let lanes = LaneMaterials::of(&scene);
     assert!(lanes.any());
-    // The GGX metal goes through lanes, the Beckmann one per path.
+    // The GGX metal and glass go through lanes, the Beckmann metal per path.
+    let rough_glass = scene.materials.iter().enumerate().filter(|(i, m)| {
+        matches!(
+            m.surface,
+            Surface::Dielectric {
+                roughness: Some(_),
+                ..
+            }
+        ) && lanes.get(*i as u32).is_some()
+    });
+    assert_eq!(rough_glass.count(), 1);
     let mut rough = 0;
     for (i, m) in scene.materials.iter().enumerate() {
         if let Surface::Conductor {
