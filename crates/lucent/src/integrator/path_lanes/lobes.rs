@@ -96,32 +96,62 @@ pub(super) fn lambert_bounce(
     wo_local: V3<f32x8>,
     (ux, uy): (f32x8, f32x8),
 ) -> (f32x8, V3<f32x8>, f32x8) {
-    let zero = f32x8::ZERO;
     let (ok, local, pdf) = lambert_sample(wo_local, ux, uy);
     // Bsdf::sample's test of a useful sample (the albedo is finite and not black).
-    let finite = local.x.finite() & local.y.finite() & local.z.finite();
-    let useful = ok & pdf.gt(zero) & pdf.finite() & finite;
-    let (unleaked, wi) = unleaked_lanes(frame, ng, (wo, wo_local), local);
-    (useful & unleaked, wi, pdf)
+    let useful = ok & pdf.gt(f32x8::ZERO) & pdf.finite();
+    let (leaves, wi) = leaving(frame, ng, (wo, wo_local), local);
+    (useful & leaves, wi, pdf)
 }
 
-/// The world direction of `local` (normalised, as [`Scattering`] returns it), sampled in
-/// `frame` for the viewer at `wo`, and where it does not leak: the side the sample chose
-/// agrees with the geometric normal's ([`unleaked`] in lanes).
+/// The world direction of a sampled `local` direction (normalised, as [`Scattering`] returns
+/// it) in `frame` for the viewer at `wo`, and where the path may leave along it: `local` is
+/// finite (`Bsdf::sample`'s test) and does not leak, the side the sample chose agreeing with
+/// the geometric normal's ([`unleaked`] in lanes).
 ///
 /// [`Scattering`]: crate::material::Scattering
 #[inline(always)]
-pub(super) fn unleaked_lanes(
+pub(super) fn leaving(
     frame: &FrameOf<f32x8>,
     ng: V3<f32x8>,
     (wo, wo_local): (V3<f32x8>, V3<f32x8>),
     local: V3<f32x8>,
 ) -> (f32x8, V3<f32x8>) {
     let zero = f32x8::ZERO;
+    let finite = local.x.finite() & local.y.finite() & local.z.finite();
     let wi = frame.to_world(local).normalize();
     let reflected = local.z.gt(zero).same(wo_local.z.gt(zero));
     let same_side = wi.dot(ng).gt(zero).same(wo.dot(ng).gt(zero));
-    (same_side.same(reflected), wi)
+    (finite & same_side.same(reflected), wi)
+}
+
+/// `Bsdf::eval`'s and `Bsdf::pdf`'s guards on a light sample's value and density (a value
+/// that is not finite is black; a density that is not finite and positive is 0).
+/// Scattering::eval_pdf's sum over one part of weight 1 gives the same bits.
+#[inline(always)]
+pub(super) fn guarded(f: Rgb, pdf: f32) -> (Rgb, f32) {
+    let f = if f.is_finite() { f } else { Rgb::BLACK };
+    (
+        f,
+        if pdf.is_finite() && pdf > 0.0 {
+            pdf
+        } else {
+            0.0
+        },
+    )
+}
+
+/// A sample as `Bsdf::sample` keeps it (a positive finite density, a finite weight that is not
+/// black), not a Dirac lobe's. Scattering::sample's one part of weight 1: the same bits.
+#[inline(always)]
+pub(super) fn kept(wi: Vec3, weight: Rgb, pdf: f32, reflected: bool) -> Option<ScatteringSample> {
+    let useful = pdf > 0.0 && pdf.is_finite() && weight.is_finite() && !weight.is_black();
+    useful.then_some(ScatteringSample {
+        wi,
+        weight,
+        pdf,
+        delta: false,
+        reflected,
+    })
 }
 
 /// A light's world direction `wi` in the frame, and where it does not leak: the shading and the

@@ -7,7 +7,7 @@
 use glam::Vec3;
 use wide::f32x8;
 
-use super::lobes::{light_local, unleaked_lanes};
+use super::lobes::{guarded, kept, leaving, light_local};
 use crate::Rgb;
 use crate::bsdf::FrameOf;
 use crate::bsdf::fresnel;
@@ -59,16 +59,7 @@ pub(super) fn rough_light_lane(
     } else {
         Rgb::BLACK
     };
-    let f = if f.is_finite() { f } else { Rgb::BLACK };
-    let pdf = if front { pdf } else { 0.0 };
-    (
-        f,
-        if pdf.is_finite() && pdf > 0.0 {
-            pdf
-        } else {
-            0.0
-        },
-    )
+    guarded(f, if front { pdf } else { 0.0 })
 }
 
 /// A rough conductor's BSDF sample in lanes from `(ux, uy)`: where it is usable (the mask:
@@ -84,10 +75,12 @@ pub(super) fn rough_bounce(
     u: (f32x8, f32x8),
 ) -> (f32x8, V3<f32x8>, (f32x8, f32x8, f32x8)) {
     let s = mirrored(ggx, wo_local, u);
-    let finite = s.wi.x.finite() & s.wi.y.finite() & s.wi.z.finite();
-    let (unleaked, wi) = unleaked_lanes(frame, ng, (wo, wo_local), s.wi);
-    let ok = wo_local.z.gt(f32x8::ZERO) & s.above & finite & unleaked;
-    (ok, wi, (s.cos, s.g1, s.pdf))
+    let (leaves, wi) = leaving(frame, ng, (wo, wo_local), s.wi);
+    (
+        wo_local.z.gt(f32x8::ZERO) & s.above & leaves,
+        wi,
+        (s.cos, s.g1, s.pdf),
+    )
 }
 
 /// A rough conductor's sample in lane `j` of [`rough_bounce`]'s: the weight
@@ -100,15 +93,12 @@ pub(super) fn rough_sample_lane(
     (cos, g1, pdf): (f32, f32, f32),
     (eta, k, specular): (Rgb, Rgb, Rgb),
 ) -> Option<ScatteringSample> {
-    let weight = specular * fresnel::conductor(cos, eta, k) * g1;
-    let useful = pdf > 0.0 && pdf.is_finite() && weight.is_finite() && !weight.is_black();
-    useful.then_some(ScatteringSample {
+    kept(
         wi,
-        weight,
+        specular * fresnel::conductor(cos, eta, k) * g1,
         pdf,
-        delta: false,
-        reflected: true,
-    })
+        true,
+    )
 }
 
 /// For a light along world direction `wi`, at rough glass of facets `ggx` and sane indices
@@ -147,17 +137,7 @@ pub(super) fn rough_glass_light_lane(
     } else {
         transmittance
     };
-    let f = tint * s.value.as_array()[j];
-    let f = if f.is_finite() { f } else { Rgb::BLACK };
-    let pdf = s.pdf.as_array()[j];
-    (
-        f,
-        if pdf.is_finite() && pdf > 0.0 {
-            pdf
-        } else {
-            0.0
-        },
-    )
+    guarded(tint * s.value.as_array()[j], s.pdf.as_array()[j])
 }
 
 /// Rough glass's BSDF sample in lanes with the lobe's number `u_lobe` (already rescaled to the
@@ -172,9 +152,8 @@ pub(super) fn rough_glass_bounce(
     (u_lobe, u): (f32x8, (f32x8, f32x8)),
 ) -> (f32x8, V3<f32x8>, Sampled<f32x8>) {
     let s = sampled(ggx, eta, wo_local, (u_lobe, u), false);
-    let finite = s.wi.x.finite() & s.wi.y.finite() & s.wi.z.finite();
-    let (unleaked, wi) = unleaked_lanes(frame, ng, (wo, wo_local), s.wi);
-    (s.ok & finite & unleaked, wi, s)
+    let (leaves, wi) = leaving(frame, ng, (wo, wo_local), s.wi);
+    (s.ok & leaves, wi, s)
 }
 
 /// Rough glass's sample in lane `j` of [`rough_glass_bounce`]'s, the viewer at `wo_z` in the
@@ -192,13 +171,6 @@ pub(super) fn rough_glass_sample_lane(
         transmittance
     };
     let weight = tint * s.weight.as_array()[j];
-    let pdf = s.pdf.as_array()[j];
-    let useful = pdf > 0.0 && pdf.is_finite() && weight.is_finite() && !weight.is_black();
-    useful.then_some(ScatteringSample {
-        wi,
-        weight,
-        pdf,
-        delta: false,
-        reflected: (s.wi.z.as_array()[j] > 0.0) == (wo_z > 0.0),
-    })
+    let reflected = (s.wi.z.as_array()[j] > 0.0) == (wo_z > 0.0);
+    kept(wi, weight, s.pdf.as_array()[j], reflected)
 }
