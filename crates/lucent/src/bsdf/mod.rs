@@ -56,7 +56,7 @@ mod dielectric;
 pub mod gltf_pbr;
 mod gltf_translucent;
 pub(crate) mod lambert;
-mod plastic;
+pub(crate) mod plastic;
 pub mod principled;
 pub mod principled_thin;
 pub(crate) mod rough_conductor;

@@ -20,12 +20,13 @@ use std::f32::consts::FRAC_1_PI;
 
 use glam::{Vec2, Vec3};
 
-use super::lambert::{cosine_pdf, sample_cosine};
-use super::{BsdfSample, fresnel, mirror};
+use super::{BsdfSample, fresnel};
 use crate::Rgb;
+use crate::lanes::{Real, V3};
+use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
 
 /// The plastic's parameters, with what every call derives from them.
-pub(super) struct Plastic {
+pub(crate) struct Plastic {
     diffuse: Rgb,
     eta: f32,
     specular: Rgb,
@@ -39,6 +40,89 @@ pub(super) struct Plastic {
 /// The channel mean, Mitsuba's `Texture::mean` for a constant colour.
 fn mean(c: Rgb) -> f32 {
     (c.r + c.g + c.b) / 3.0
+}
+
+/// A plastic's value and density for `(wo, wi)` without its base's colour, written once over
+/// [`Real`] ([`value_and_pdf`]).
+pub(crate) struct PlasticLight<R: Real> {
+    /// Both directions above the surface, and a base to sample (else value and density are 0).
+    pub front: R::Mask,
+    /// `(1 − F(θo))·(1 − F(θi))·cos θi/π`: the value is the base's colour times this.
+    pub factor: R,
+    /// `P(base)·cos θi/π`.
+    pub pdf: R,
+}
+
+/// A plastic's sample without colours ([`sampled`]).
+pub(crate) struct PlasticSample<R: Real> {
+    /// There is a sample: the viewer above the surface, something to scatter, a direction off
+    /// the rim.
+    pub ok: R::Mask,
+    /// The coat's mirror (a Dirac lobe, weight `specular·factor`); else the base (weight
+    /// `base·factor`).
+    pub coat: R::Mask,
+    pub wi: V3<R>,
+    pub factor: R,
+    pub pdf: R,
+}
+
+/// `F(cos θ)` of the coat (from outside), for a sane index `eta`.
+#[inline(always)]
+fn coat_fresnel<R: Real>(cos: R, eta: R) -> R {
+    fresnel::dielectric_of(cos, eta).r
+}
+
+/// The probabilities of sampling the coat and the base given `F(θo)` and the specular
+/// sampling weight `w`, and where there is anything to sample (their sum positive).
+#[inline(always)]
+fn lobe_probabilities<R: Real>(f_o: R, w: R) -> (R::Mask, R, R) {
+    let one = R::splat(1.0);
+    let spec = f_o * w;
+    let base = (one - f_o) * (one - w);
+    let sum = spec + base;
+    (sum.gt(R::splat(0.0)), spec / sum, base / sum)
+}
+
+/// The value's factor and the density for `(wo, wi)`, for a sane index `eta` and the specular
+/// sampling weight `w`.
+#[inline(always)]
+pub(crate) fn value_and_pdf<R: Real>(eta: R, w: R, (wo, wi): (V3<R>, V3<R>)) -> PlasticLight<R> {
+    let (zero, one) = (R::splat(0.0), R::splat(1.0));
+    let f_o = coat_fresnel(wo.z, eta);
+    let transmit = (one - f_o) * (one - coat_fresnel(wi.z, eta));
+    let (some, _, p_base) = lobe_probabilities(f_o, w);
+    PlasticLight {
+        front: wo.z.gt(zero) & wi.z.gt(zero),
+        factor: transmit * wi.z * R::splat(FRAC_1_PI),
+        pdf: R::select(some, p_base * cosine_hemisphere_pdf(wi.z), zero),
+    }
+}
+
+/// The coat's mirror when `u_lobe < P(coat)`, else the base by the cosine with `u`, for a sane
+/// index `eta` and the specular sampling weight `w`.
+#[inline(always)]
+pub(crate) fn sampled<R: Real>(
+    eta: R,
+    w: R,
+    wo: V3<R>,
+    (u_lobe, (ux, uy)): (R, (R, R)),
+) -> PlasticSample<R> {
+    let (zero, one) = (R::splat(0.0), R::splat(1.0));
+    let f_o = coat_fresnel(wo.z, eta);
+    let (some, p_spec, p_base) = lobe_probabilities(f_o, w);
+    let coat = u_lobe.lt(p_spec);
+    let base_wi = cosine_hemisphere(ux, uy);
+    let transmit = (one - f_o) * (one - coat_fresnel(base_wi.z, eta));
+    // The coat's Dirac lobe takes no part in the density of the base, so the base's weight is
+    // its value over its own share.
+    let mirror = V3::new(-wo.x, -wo.y, wo.z);
+    PlasticSample {
+        ok: wo.z.gt(zero) & some & (coat | base_wi.z.gt(zero)),
+        coat,
+        wi: V3::select(coat, mirror, base_wi),
+        factor: R::select(coat, f_o / p_spec, transmit / p_base),
+        pdf: R::select(coat, p_spec, p_base * cosine_hemisphere_pdf(base_wi.z)),
+    }
 }
 
 impl Plastic {
@@ -63,27 +147,13 @@ impl Plastic {
         if wo.z <= 0.0 {
             return 0.0;
         }
-        self.lobe_probabilities(self.fresnel(wo.z))
-            .map_or(0.0, |(spec, _)| spec)
-    }
-
-    /// The coat's Fresnel reflectance at `cos θ` (from outside).
-    fn fresnel(&self, cos: f32) -> f32 {
-        fresnel::dielectric(cos, self.eta).r
-    }
-
-    /// The probabilities of sampling the coat and the base, given `F(θo)`; `None` when both
-    /// vanish (nothing to scatter).
-    fn lobe_probabilities(&self, f_o: f32) -> Option<(f32, f32)> {
-        let spec = f_o * self.w;
-        let base = (1.0 - f_o) * (1.0 - self.w);
-        let sum = spec + base;
-        (sum > 0.0).then(|| (spec / sum, base / sum))
+        let (some, spec, _) = lobe_probabilities(coat_fresnel(wo.z, self.eta), self.w);
+        if some { spec } else { 0.0 }
     }
 
     /// `ρ·(1/η²)/(1 − F_dr)` (or `/(1 − ρ F_dr)`): the base's value before the two coat
     /// transmittances and the `cos/π`.
-    fn base(&self) -> Rgb {
+    pub(crate) fn base(&self) -> Rgb {
         let fdr = fresnel::diffuse_reflectance(1.0 / self.eta);
         let inv_eta2 = 1.0 / (self.eta * self.eta);
         let d = self.diffuse;
@@ -100,50 +170,39 @@ impl Plastic {
         }
     }
 
+    /// The coat's index (made sane) and the specular sampling weight.
+    pub(crate) fn eta_and_weight(&self) -> (f32, f32) {
+        (self.eta, self.w)
+    }
+
     /// `f_d·cos θi` (the coat's mirror is a Dirac lobe).
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Rgb::BLACK;
+        let l = value_and_pdf(self.eta, self.w, (wo.into(), wi.into()));
+        if l.front {
+            self.base() * l.factor
+        } else {
+            Rgb::BLACK
         }
-        let transmit = (1.0 - self.fresnel(wo.z)) * (1.0 - self.fresnel(wi.z));
-        self.base() * (transmit * wi.z * FRAC_1_PI)
     }
 
     /// `P(base)·cos θi/π`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
-        }
-        let Some((_, p_base)) = self.lobe_probabilities(self.fresnel(wo.z)) else {
-            return 0.0;
-        };
-        p_base * cosine_pdf(wi)
+        let l = value_and_pdf(self.eta, self.w, (wo.into(), wi.into()));
+        if l.front { l.pdf } else { 0.0 }
     }
 
     /// The coat's mirror when `u_lobe < P(coat)`, else the base by the cosine.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        if wo.z <= 0.0 {
-            return None;
-        }
-        let f_o = self.fresnel(wo.z);
-        let (p_spec, p_base) = self.lobe_probabilities(f_o)?;
-        if u_lobe < p_spec {
-            return Some(BsdfSample {
-                wi: mirror(wo),
-                weight: self.specular * (f_o / p_spec),
-                pdf: p_spec,
-                delta: true,
-            });
-        }
-        // The coat's Dirac lobe takes no part in the density of the base, so the weight is the
-        // base's value over its own share.
-        let wi = sample_cosine(u)?;
-        let transmit = (1.0 - f_o) * (1.0 - self.fresnel(wi.z));
-        Some(BsdfSample {
-            wi,
-            weight: self.base() * (transmit / p_base),
-            pdf: p_base * cosine_pdf(wi),
-            delta: false,
+        let s = sampled(self.eta, self.w, wo.into(), (u_lobe, (u.x, u.y)));
+        s.ok.then(|| BsdfSample {
+            wi: s.wi.into(),
+            weight: if s.coat {
+                self.specular * s.factor
+            } else {
+                self.base() * s.factor
+            },
+            pdf: s.pdf,
+            delta: s.coat,
         })
     }
 }
@@ -158,11 +217,13 @@ mod tests {
         let wo = Vec3::new(0.0, 0.6, 0.8);
         let f_o = fresnel::dielectric(0.8, 1.5).r;
         // Mitsuba's weight: w = 1/(0.5 + 1) = 2/3.
-        let (ps, pb) = b.lobe_probabilities(f_o).unwrap();
+        let (some, ps, pb) = lobe_probabilities(f_o, b.w);
+        assert!(some);
         let want = f_o * 2.0 / 3.0 / (f_o * 2.0 / 3.0 + (1.0 - f_o) / 3.0);
         assert!((ps - want).abs() < 1e-6 && (ps + pb - 1.0).abs() < 1e-6);
         let s = b.sample(wo, 0.0, Vec2::splat(0.5)).unwrap();
-        assert!(s.delta && s.wi == mirror(wo) && (s.weight.r - f_o / ps).abs() < 1e-5);
+        let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
+        assert!(s.delta && s.wi == mirror && (s.weight.r - f_o / ps).abs() < 1e-5);
         // The base: (1 − F_i)(1 − F_o)/η² · ρ/(1 − F_dr) · cos/π.
         let wi = Vec3::new(0.3, 0.0, 0.954).normalize();
         let fdr = fresnel::diffuse_reflectance(1.0 / 1.5);
@@ -181,7 +242,7 @@ mod tests {
         for deg in [0.0f32, 40.0, 70.0, 85.0] {
             let a = deg.to_radians();
             let wo = Vec3::new(a.sin(), 0.0, a.cos());
-            let f_o = b.fresnel(wo.z);
+            let f_o = coat_fresnel(wo.z, b.eta);
             // ∫ f_d cos dωi by the midpoint rule in μ = cos θi.
             let n = 4000;
             let base: f32 = (0..n)

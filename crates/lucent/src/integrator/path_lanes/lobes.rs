@@ -1,13 +1,15 @@
 //! What each surface lanes know does in a lane group: the light sample's BSDF value and
 //! density and the BSDF sample, in lanes where the material's code is written once over
-//! [`Real`] (Lambert, a smooth conductor), per lane where it is not (smooth glass); the shared
-//! steps (a light's direction in the frame, the leak test). The rough surfaces are `rough.rs`.
+//! [`Real`] (Lambert, a smooth conductor, plastic), per lane where it is not (smooth glass); the
+//! shared steps (a light's direction in the frame, the leak test, `Bsdf`'s guards). The rough
+//! surfaces are `rough.rs`.
 
 use glam::{Vec2, Vec3};
 use wide::f32x8;
 
 use crate::Rgb;
 use crate::bsdf::lambert::{lambert_eval, lambert_pdf, lambert_sample};
+use crate::bsdf::plastic::{self, PlasticLight, PlasticSample};
 use crate::bsdf::{Bsdf, Frame, FrameOf, Transport};
 use crate::lanes::{Mask as _, Real, V3};
 use crate::material::{ScatteringSample, unleaked};
@@ -165,4 +167,66 @@ pub(super) fn light_local(
     let local = frame.to_local(wi);
     let consistent = wi.dot(ng).gt(f32x8::ZERO).same(local.z.gt(f32x8::ZERO));
     (consistent, local)
+}
+
+/// For a light along world direction `wi`, at plastic with coats of (sane) indices and
+/// specular sampling weights `(eta, w)`: where `wi` does not leak (the mask), and the terms of
+/// its value without the base's colour and of its density ([`plastic::value_and_pdf`]).
+#[inline(always)]
+pub(super) fn plastic_value_and_pdf(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    wo_local: V3<f32x8>,
+    wi: V3<f32x8>,
+    (eta, w): (f32x8, f32x8),
+) -> (f32x8, PlasticLight<f32x8>) {
+    let (consistent, local) = light_local(frame, ng, wi);
+    (
+        consistent,
+        plastic::value_and_pdf(eta, w, (wo_local, local)),
+    )
+}
+
+/// Plastic's value and density for a light in lane `j`, where the light does not leak
+/// (`consistent`): `Plastic::eval` and `pdf` (`base` times the lane's factor), then `Bsdf`'s
+/// guards.
+#[inline(always)]
+pub(super) fn plastic_light_lane(
+    l: &PlasticLight<f32x8>,
+    consistent: bool,
+    j: usize,
+    base: Rgb,
+) -> (Rgb, f32) {
+    if !consistent || l.front.to_bitmask() & (1 << j) == 0 {
+        return (Rgb::BLACK, 0.0);
+    }
+    guarded(base * l.factor.as_array()[j], l.pdf.as_array()[j])
+}
+
+/// Plastic's BSDF sample in lanes with the lobe's number `u_lobe` (rescaled to the part) and
+/// the base's `u`: where it is usable (the mask), the world direction, the colourless sample.
+#[inline(always)]
+pub(super) fn plastic_bounce(
+    frame: &FrameOf<f32x8>,
+    ng: V3<f32x8>,
+    (wo, wo_local): (V3<f32x8>, V3<f32x8>),
+    (eta, w): (f32x8, f32x8),
+    (u_lobe, u): (f32x8, (f32x8, f32x8)),
+) -> (f32x8, V3<f32x8>, PlasticSample<f32x8>) {
+    let s = plastic::sampled(eta, w, wo_local, (u_lobe, u));
+    let (leaves, wi) = leaving(frame, ng, (wo, wo_local), s.wi);
+    (s.ok & leaves, wi, s)
+}
+
+/// Plastic's sample in lane `j` of [`plastic_bounce`]'s: the coat's mirror (`specular` times
+/// the factor, a Dirac lobe) or the base (`base` times it), kept where `Bsdf::sample` keeps
+/// it.
+#[inline(always)]
+pub(super) fn plastic_sample_lane(
+    (wi, s, j): (Vec3, &PlasticSample<f32x8>, usize),
+    (base, specular): (Rgb, Rgb),
+) -> Option<ScatteringSample> {
+    let coat = s.coat.to_bitmask() & (1 << j) != 0;
+    let weight = if coat { specular } else { base } * s.factor.as_array()[j];
+    kept(wi, weight, s.pdf.as_array()[j], true).map(|k| ScatteringSample { delta: coat, ..k })
 }

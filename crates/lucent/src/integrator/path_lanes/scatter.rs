@@ -7,7 +7,10 @@ use glam::{Vec2, Vec3};
 use wide::f32x8;
 
 use super::LaneHit;
-use super::lobes::{glass_sample, lambert_bounce, lambert_value_and_pdf, mirror_bounce};
+use super::lobes::{
+    glass_sample, lambert_bounce, lambert_value_and_pdf, mirror_bounce, plastic_bounce,
+    plastic_light_lane, plastic_sample_lane, plastic_value_and_pdf,
+};
 use super::rough::{
     rough_bounce, rough_glass_bounce, rough_glass_light_lane, rough_glass_sample_lane,
     rough_glass_value_and_pdf, rough_light_lane, rough_sample_lane, rough_value_and_pdf,
@@ -71,11 +74,15 @@ impl PathTracer {
         let samplers_of = |lanes: &[usize], pick: fn(&Arrival) -> Sampler| -> ArrayVec<_, LANES> {
             lanes.iter().map(|&j| pick(&batch[j].at)).collect()
         };
-        // Lambert and the rough surfaces: those with lobes that are not Dirac deltas.
+        // Lambert, the rough surfaces and plastic with a base: those with lobes that are not
+        // Dirac deltas.
         let diffuse = lanes_of(|b| {
             matches!(
                 b,
-                LaneBsdf::Lambert(_) | LaneBsdf::RoughMirror { .. } | LaneBsdf::RoughGlass { .. }
+                LaneBsdf::Lambert(_)
+                    | LaneBsdf::RoughMirror { .. }
+                    | LaneBsdf::RoughGlass { .. }
+                    | LaneBsdf::Plastic { delta: false, .. }
             )
         });
         let mut samplers = samplers_of(&diffuse, |at| at.u_light);
@@ -93,18 +100,23 @@ impl PathTracer {
             lights[j].map_or(Vec3::Z, |s| s.wi)
         }));
         let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
-        // GGX facets where the surface is rough (roughness 1 elsewhere), glass's index (1.5
-        // elsewhere).
+        // GGX facets where the surface is rough (roughness 1 elsewhere), a dielectric's index
+        // (1.5 elsewhere), a plastic's specular sampling weight (½ elsewhere).
         let (alphas, etas): ([(f32, f32); LANES], [f32; LANES]) = (
             std::array::from_fn(|j| match of(j).bsdf {
                 LaneBsdf::RoughMirror { alpha, .. } | LaneBsdf::RoughGlass { alpha, .. } => alpha,
                 _ => (1.0, 1.0),
             }),
             std::array::from_fn(|j| match of(j).bsdf {
-                LaneBsdf::RoughGlass { eta, .. } => eta,
+                LaneBsdf::RoughGlass { eta, .. } | LaneBsdf::Plastic { eta, .. } => eta,
                 _ => 1.5,
             }),
         );
+        let weights: [f32; LANES] = std::array::from_fn(|j| match of(j).bsdf {
+            LaneBsdf::Plastic { w, .. } => w,
+            _ => 0.5,
+        });
+        let plastic_coat = (f32x8::new(etas), f32x8::new(weights));
         let ggx = Ggx {
             alpha_u: f32x8::new(alphas.map(|a| a.0)),
             alpha_v: f32x8::new(alphas.map(|a| a.1)),
@@ -113,9 +125,12 @@ impl PathTracer {
         let any = |kind: fn(&LaneBsdf) -> bool| batch.iter().any(|h| kind(&h.bsdf));
         let rough = any(|b| matches!(b, LaneBsdf::RoughMirror { .. }));
         let rough_glass = any(|b| matches!(b, LaneBsdf::RoughGlass { .. }));
+        let plastic = any(|b| matches!(b, LaneBsdf::Plastic { .. }));
         let rough_light = rough.then(|| rough_value_and_pdf(&frame, ng, wo_local, wi, ggx));
         let rough_glass_light =
             rough_glass.then(|| rough_glass_value_and_pdf(&frame, ng, wo_local, wi, glass_facets));
+        let plastic_light =
+            plastic.then(|| plastic_value_and_pdf(&frame, ng, wo_local, wi, plastic_coat));
 
         // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
         // direction's drawn (a mirror draws none).
@@ -134,13 +149,18 @@ impl PathTracer {
         let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
         let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
         let rough_sample = rough.then(|| rough_bounce(&frame, ng, (wo, wo_local), ggx, (ux, uy)));
-        // Glass picks reflection or refraction with the lobe's number (smooth glass's
-        // direction's numbers are not used; rough glass's are the facet's, above), rescaled to
-        // its one part as Scattering::sample rescales it (itself, clamped below 1).
-        let glass = lanes_of(|b| b.transmits());
-        let mut samplers = samplers_of(&glass, |at| at.u_bsdf);
-        let u_lobe = at_lanes(&glass, Sampler::next_1d_lanes(&mut samplers), 0.0)
+        // Glass picks reflection or refraction, plastic its coat or its base, with the lobe's
+        // number (smooth glass's direction's numbers are not used; the others' are those drawn
+        // above), rescaled to its one part as Scattering::sample rescales it (itself, clamped
+        // below 1).
+        let picking = lanes_of(|b| b.transmits() || matches!(b, LaneBsdf::Plastic { .. }));
+        let mut samplers = samplers_of(&picking, |at| at.u_bsdf);
+        let u_lobe = at_lanes(&picking, Sampler::next_1d_lanes(&mut samplers), 0.0)
             .map(|u| u.clamp(0.0, 1.0 - f32::EPSILON));
+        let plastic_sample = plastic.then(|| {
+            let u = (f32x8::new(u_lobe), (ux, uy));
+            plastic_bounce(&frame, ng, (wo, wo_local), plastic_coat, u)
+        });
         let rough_glass_sample = rough_glass.then(|| {
             let u = (f32x8::new(u_lobe), (ux, uy));
             rough_glass_bounce(&frame, ng, (wo, wo_local), glass_facets, u)
@@ -234,6 +254,20 @@ impl PathTracer {
                         let usable = ok.to_bitmask() & (1 << j) != 0;
                         usable
                             .then(|| rough_glass_sample_lane((wi.lane(j), s, j), wo_z, tints))
+                            .flatten()
+                    })
+                }
+                LaneBsdf::Plastic { base, specular, .. } => {
+                    if let (Some(s), Some((consistent, l))) = (&lights[j], &plastic_light) {
+                        let consistent = consistent.to_bitmask() & (1 << j) != 0;
+                        let f_pdf = plastic_light_lane(l, consistent, j, base);
+                        let light = light_through(scene, &h.hit, s, f_pdf, true, stats);
+                        path.l += path.beta * light;
+                    }
+                    plastic_sample.as_ref().and_then(|(ok, wi, s)| {
+                        let usable = ok.to_bitmask() & (1 << j) != 0;
+                        usable
+                            .then(|| plastic_sample_lane((wi.lane(j), s, j), (base, specular)))
                             .flatten()
                     })
                 }

@@ -3,6 +3,7 @@
 use crate::Rgb;
 use crate::bsdf::Distribution;
 use crate::bsdf::fresnel::sane_eta;
+use crate::bsdf::plastic::Plastic;
 use crate::bsdf::rough_dielectric::INDEX_MATCHED;
 use crate::material::{Roughness, Surface};
 use crate::scene::Scene;
@@ -49,6 +50,13 @@ enum LaneSurface<'a> {
         specular: &'a Texture,
         transmittance: &'a Texture,
     },
+    /// A diffuse base under a smooth coat (Mitsuba's `plastic`).
+    Plastic {
+        diffuse: &'a Texture,
+        eta: f32,
+        specular: &'a Texture,
+        nonlinear: bool,
+    },
     /// Rough glass with GGX facets (Mitsuba's `roughdielectric`), its index made sane and not
     /// index-matched.
     RoughGlass {
@@ -79,6 +87,16 @@ pub(super) enum LaneBsdf {
         specular: Rgb,
         transmittance: Rgb,
     },
+    /// A plastic's base (its value before the coat's transmittances and `cos/π`), its coat's
+    /// tint, index (sane) and specular sampling weight; `delta` when only the coat is left (a
+    /// black base: no light sample).
+    Plastic {
+        base: Rgb,
+        specular: Rgb,
+        eta: f32,
+        w: f32,
+        delta: bool,
+    },
     /// Rough glass's index, tints and GGX roughness (tangent, bitangent; clamped).
     RoughGlass {
         eta: f32,
@@ -99,9 +117,9 @@ impl LaneBsdf {
 impl<'a> LaneMaterials<'a> {
     /// The materials of `scene` that lanes shade: Lambertian surfaces (Mitsuba's `diffuse`),
     /// smooth conductors (`conductor`), rough conductors with GGX facets (`roughconductor`),
-    /// smooth glass (`dielectric`) and rough glass with GGX facets (`roughdielectric`, not
-    /// index-matched), their parameters colours or textures. Any other material is shaded per
-    /// path.
+    /// smooth glass (`dielectric`), rough glass with GGX facets (`roughdielectric`, not
+    /// index-matched) and smooth plastic (`plastic`), their parameters colours or textures. Any
+    /// other material is shaded per path.
     pub fn of(scene: &'a Scene) -> Self {
         let lanes = scene
             .materials
@@ -151,6 +169,18 @@ impl<'a> LaneMaterials<'a> {
                             roughness,
                         }
                     }
+                    Surface::Plastic {
+                        diffuse,
+                        eta,
+                        specular,
+                        nonlinear,
+                        coat: None,
+                    } => LaneSurface::Plastic {
+                        diffuse,
+                        eta: *eta,
+                        specular,
+                        nonlinear: *nonlinear,
+                    },
                     _ => return None,
                 };
                 Some(LaneMaterial {
@@ -186,18 +216,21 @@ pub(super) fn bsdf_at(
     footprint: f32,
 ) -> LaneBsdf {
     let material = &scene.materials[hit.material as usize];
+    // The hit's vertex colour where the material multiplies its base by it.
+    let vertex_color = || {
+        if m.vertex_colors {
+            hit.color
+        } else {
+            Rgb::WHITE
+        }
+    };
     let eval = |t: &Texture| match t {
         Texture::Solid(c) => *c,
         t => t.eval(&scene.tex_coords(material, hit, footprint), &scene.images),
     };
     match m.surface {
         LaneSurface::Lambert { reflectance } => {
-            let color = if m.vertex_colors {
-                hit.color
-            } else {
-                Rgb::WHITE
-            };
-            LaneBsdf::Lambert(eval(reflectance) * color)
+            LaneBsdf::Lambert(eval(reflectance) * vertex_color())
         }
         LaneSurface::Mirror { eta, k, specular } => LaneBsdf::Mirror {
             eta: eval(eta),
@@ -216,6 +249,23 @@ pub(super) fn bsdf_at(
                 k: eval(k),
                 specular: eval(specular),
                 alpha: roughness.at(&at, &scene.images).alphas(),
+            }
+        }
+        LaneSurface::Plastic {
+            diffuse,
+            eta,
+            specular,
+            nonlinear,
+        } => {
+            let specular = eval(specular);
+            let plastic = Plastic::new(eval(diffuse) * vertex_color(), eta, specular, nonlinear);
+            let (eta, w) = plastic.eta_and_weight();
+            LaneBsdf::Plastic {
+                base: plastic.base(),
+                specular,
+                eta,
+                w,
+                delta: plastic.is_delta(),
             }
         }
         LaneSurface::RoughGlass {

@@ -13,9 +13,9 @@ use glam::Vec3;
 
 /// An open box of Lambertian walls (one two-sided, one seen from behind through the open
 /// side), a Lambertian ball, a metal one, a glass one, a rough metal one (GGX, anisotropic,
-/// its roughness a texture), a rough glass one (GGX) and a rough metal one that lanes do not
-/// know (Beckmann), a rectangular light, a point light and a grey sky: paths that go through
-/// lanes, per path, and between the two.
+/// its roughness a texture), a rough glass one (GGX), a plastic one (its base a texture) and a
+/// rough metal one that lanes do not know (Beckmann), a rectangular light, a point light and a
+/// grey sky: paths that go through lanes, per path, and between the two.
 fn mixed_scene() -> Scene {
     let camera = Camera::new(Vec3::new(0.2, 0.1, 3.5), Vec3::ZERO, Vec3::Y, 50.0, 16, 16);
     let mut b = SceneBuilder::new(camera.unwrap());
@@ -86,6 +86,23 @@ fn mixed_scene() -> Scene {
         )
         .0,
     );
+    let plastic = b.material(
+        Material::physically_based(
+            Surface::Plastic {
+                diffuse: Texture::Checker(crate::texture::checker::Checker {
+                    even: Rgb::new(0.1, 0.5, 0.8),
+                    odd: Rgb::new(0.9, 0.9, 0.2),
+                    size: 0.15,
+                }),
+                eta: 1.6,
+                specular: Texture::from(1.0),
+                nonlinear: true,
+                coat: None,
+            },
+            &[],
+        )
+        .0,
+    );
     let glass = b.material(
         Material::physically_based(
             Surface::Dielectric {
@@ -143,6 +160,7 @@ fn mixed_scene() -> Scene {
         (Vec3::new(-0.55, 0.35, -0.5), 0.3, ggx),
         (Vec3::new(0.6, 0.4, -0.5), 0.25, beckmann),
         (Vec3::new(-0.25, 0.35, 0.6), 0.22, rough_glass),
+        (Vec3::new(0.3, 0.3, 0.2), 0.2, plastic),
     ] {
         b.sphere(Sphere { center, radius }, material);
     }
@@ -170,6 +188,10 @@ fn lanes_give_the_scalar_paths_bits() {
         ) && lanes.get(*i as u32).is_some()
     });
     assert_eq!(rough_glass.count(), 1);
+    let plastic = scene.materials.iter().enumerate().filter(|(i, m)| {
+        matches!(m.surface, Surface::Plastic { .. }) && lanes.get(*i as u32).is_some()
+    });
+    assert_eq!(plastic.count(), 1);
     let mut rough = 0;
     for (i, m) in scene.materials.iter().enumerate() {
         if let Surface::Conductor {
