@@ -62,20 +62,18 @@ pub(super) fn mirror_bounce(
     (wo_local.z.gt(zero) & finite & same_side, wi)
 }
 
-/// For a light along world direction `wi`: where it reaches the front of a Lambertian part
-/// without leaking through the surface (the mask), `cos θi/π` — [`Scattering`]'s value without
-/// the albedo — and the part's density of sampling `wi` (0 where it leaks).
+/// For a light along `local` in the frame (`consistent` where it does not leak through the
+/// surface, [`light_local`]): where it reaches the front of a Lambertian part (the mask),
+/// `cos θi/π` — [`Scattering`]'s value without the albedo — and the part's density of sampling
+/// it (0 where it leaks).
 ///
 /// [`Scattering`]: crate::material::Scattering
 #[inline(always)]
 pub(super) fn lambert_value_and_pdf(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
     wo_local: V3<f32x8>,
-    wi: V3<f32x8>,
+    (consistent, local): (f32x8, V3<f32x8>),
 ) -> ((f32x8, f32x8), f32x8) {
     let zero = f32x8::ZERO;
-    let (consistent, local) = light_local(frame, ng, wi);
     let (front, cos_over_pi) = lambert_eval(wo_local, local);
     // Bsdf::pdf keeps only finite, positive densities (Scattering::eval_pdf's sum over one part
     // of weight 1, divided by the total weight 1, gives the same bits).
@@ -169,27 +167,9 @@ pub(super) fn light_local(
     (consistent, local)
 }
 
-/// For a light along world direction `wi`, at plastic with coats of (sane) indices and
-/// specular sampling weights `(eta, w)`: where `wi` does not leak (the mask), and the terms of
-/// its value without the base's colour and of its density ([`plastic::value_and_pdf`]).
-#[inline(always)]
-pub(super) fn plastic_value_and_pdf(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
-    wo_local: V3<f32x8>,
-    wi: V3<f32x8>,
-    (eta, w): (f32x8, f32x8),
-) -> (f32x8, PlasticLight<f32x8>) {
-    let (consistent, local) = light_local(frame, ng, wi);
-    (
-        consistent,
-        plastic::value_and_pdf(eta, w, (wo_local, local)),
-    )
-}
-
-/// Plastic's value and density for a light in lane `j`, where the light does not leak
-/// (`consistent`): `Plastic::eval` and `pdf` (`base` times the lane's factor), then `Bsdf`'s
-/// guards.
+/// Plastic's value and density for a light in lane `j` of the lanes' terms `l`
+/// ([`plastic::value_and_pdf`]), where the light does not leak (`consistent`): `Plastic::eval`
+/// and `pdf` (`base` times the lane's factor), then `Bsdf`'s guards.
 #[inline(always)]
 pub(super) fn plastic_light_lane(
     l: &PlasticLight<f32x8>,

@@ -7,13 +7,13 @@
 use glam::Vec3;
 use wide::f32x8;
 
-use super::lobes::{guarded, kept, leaving, light_local};
+use super::lobes::{guarded, kept, leaving};
 use crate::Rgb;
 use crate::bsdf::FrameOf;
 use crate::bsdf::fresnel;
 use crate::bsdf::ggx::Ggx;
-use crate::bsdf::rough_conductor::{Reflection, mirrored, reflection};
-use crate::bsdf::rough_dielectric::{Sampled, Scatter, sampled, value_and_pdf};
+use crate::bsdf::rough_conductor::{Reflection, mirrored};
+use crate::bsdf::rough_dielectric::{Sampled, Scatter, sampled};
 use crate::lanes::{Real, V3};
 use crate::material::ScatteringSample;
 
@@ -23,25 +23,9 @@ fn on(mask: f32x8, j: usize) -> bool {
     mask.to_bitmask() & (1 << j) != 0
 }
 
-/// For a light along world direction `wi`, at a rough conductor of facets `ggx`: where `wi`
-/// does not leak through the surface (the mask), and the colourless terms of its value and
-/// density ([`reflection`]).
-#[inline(always)]
-pub(super) fn rough_value_and_pdf(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
-    wo_local: V3<f32x8>,
-    wi: V3<f32x8>,
-    ggx: Ggx<f32x8>,
-) -> (f32x8, Reflection<f32x8>) {
-    let (consistent, local) = light_local(frame, ng, wi);
-    (consistent, reflection(ggx, wo_local, local))
-}
-
 /// A rough conductor's value and density for a light in one lane, from the lanes' colourless
-/// terms `r` (lane `j`) where the light does not leak (`consistent`): `RoughConductor::eval`
-/// and `pdf`, then `Bsdf`'s guards (Scattering::eval_pdf's sum over one part of weight 1 gives
-/// the same bits).
+/// terms `r` (lane `j`, `rough_conductor::reflection`) where the light does not leak
+/// (`consistent`): `RoughConductor::eval` and `pdf`, then `Bsdf`'s guards.
 #[inline(always)]
 pub(super) fn rough_light_lane(
     r: &Reflection<f32x8>,
@@ -101,27 +85,9 @@ pub(super) fn rough_sample_lane(
     )
 }
 
-/// For a light along world direction `wi`, at rough glass of facets `ggx` and sane indices
-/// `eta`: where `wi` does not leak through the surface (the mask), and the colourless terms of
-/// its value and density ([`value_and_pdf`]).
-#[inline(always)]
-pub(super) fn rough_glass_value_and_pdf(
-    frame: &FrameOf<f32x8>,
-    ng: V3<f32x8>,
-    wo_local: V3<f32x8>,
-    wi: V3<f32x8>,
-    (ggx, eta): (Ggx<f32x8>, f32x8),
-) -> (f32x8, Scatter<f32x8>) {
-    let (consistent, local) = light_local(frame, ng, wi);
-    (
-        consistent,
-        value_and_pdf(ggx, eta, (wo_local, local), false),
-    )
-}
-
-/// Rough glass's value and density for a light in lane `j` of the lanes' terms `s`, where the
-/// light does not leak (`consistent`): `RoughDielectric::eval` and `pdf` (the tint of the lobe
-/// `wi` is in), then `Bsdf`'s guards.
+/// Rough glass's value and density for a light in lane `j` of the lanes' terms `s`
+/// (`rough_dielectric::value_and_pdf`), where the light does not leak (`consistent`):
+/// `RoughDielectric::eval` and `pdf` (the tint of the lobe `wi` is in), then `Bsdf`'s guards.
 #[inline(always)]
 pub(super) fn rough_glass_light_lane(
     s: &Scatter<f32x8>,

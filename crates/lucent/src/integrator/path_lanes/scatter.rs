@@ -8,17 +8,19 @@ use wide::f32x8;
 
 use super::LaneHit;
 use super::lobes::{
-    glass_sample, lambert_bounce, lambert_value_and_pdf, mirror_bounce, plastic_bounce,
-    plastic_light_lane, plastic_sample_lane, plastic_value_and_pdf,
+    glass_sample, lambert_bounce, lambert_value_and_pdf, light_local, mirror_bounce,
+    plastic_bounce, plastic_light_lane, plastic_sample_lane,
 };
 use super::rough::{
     rough_bounce, rough_glass_bounce, rough_glass_light_lane, rough_glass_sample_lane,
-    rough_glass_value_and_pdf, rough_light_lane, rough_sample_lane, rough_value_and_pdf,
+    rough_light_lane, rough_sample_lane,
 };
 use super::surfaces::LaneBsdf;
 use crate::Rgb;
 use crate::bsdf::ggx::Ggx;
+use crate::bsdf::rough_conductor::reflection;
 use crate::bsdf::{Frame, FrameOf, fresnel};
+use crate::bsdf::{plastic, rough_dielectric};
 use crate::integrator::RayStats;
 use crate::integrator::path::{Arrival, Path, PathTracer};
 use crate::integrator::vertex::{leave, light_through};
@@ -99,7 +101,9 @@ impl PathTracer {
         let wi = V3::gather(&std::array::from_fn(|j| {
             lights[j].map_or(Vec3::Z, |s| s.wi)
         }));
-        let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(&frame, ng, wo_local, wi);
+        // The light in each frame, and where it does not leak; the same for every material.
+        let (lit, local_wi) = light_local(&frame, ng, wi);
+        let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(wo_local, (lit, local_wi));
         // GGX facets where the surface is rough (roughness 1 elsewhere), a dielectric's index
         // (1.5 elsewhere), a plastic's specular sampling weight (½ elsewhere).
         let (alphas, etas): ([(f32, f32); LANES], [f32; LANES]) = (
@@ -126,11 +130,15 @@ impl PathTracer {
         let rough = any(|b| matches!(b, LaneBsdf::RoughMirror { .. }));
         let rough_glass = any(|b| matches!(b, LaneBsdf::RoughGlass { .. }));
         let plastic = any(|b| matches!(b, LaneBsdf::Plastic { .. }));
-        let rough_light = rough.then(|| rough_value_and_pdf(&frame, ng, wo_local, wi, ggx));
-        let rough_glass_light =
-            rough_glass.then(|| rough_glass_value_and_pdf(&frame, ng, wo_local, wi, glass_facets));
-        let plastic_light =
-            plastic.then(|| plastic_value_and_pdf(&frame, ng, wo_local, wi, plastic_coat));
+        let rough_light = rough.then(|| reflection(ggx, wo_local, local_wi));
+        let rough_glass_light = rough_glass.then(|| {
+            let (ggx, eta) = glass_facets;
+            rough_dielectric::value_and_pdf(ggx, eta, (wo_local, local_wi), false)
+        });
+        let plastic_light = plastic.then(|| {
+            let (eta, w) = plastic_coat;
+            plastic::value_and_pdf(eta, w, (wo_local, local_wi))
+        });
 
         // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
         // direction's drawn (a mirror draws none).
@@ -166,7 +174,8 @@ impl PathTracer {
             rough_glass_bounce(&frame, ng, (wo, wo_local), glass_facets, u)
         });
 
-        let (front, cosine_ok, mirror_ok) = (
+        let (lit, front, cosine_ok, mirror_ok) = (
+            lit.to_bitmask(),
             front.to_bitmask(),
             cosine_ok.to_bitmask(),
             mirror_ok.to_bitmask(),
@@ -176,32 +185,32 @@ impl PathTracer {
             let before = stats.untraceable;
             let path = &mut paths[h.lane];
             let on = |bits: u32| bits & (1 << j) != 0;
-            let sample = match h.bsdf {
+            let consistent = on(lit);
+            // The BSDF's value and density for the light sample where the surface has one, and
+            // the BSDF sample.
+            let (value, sample) = match h.bsdf {
                 LaneBsdf::Lambert(albedo) => {
-                    if let Some(s) = &lights[j] {
-                        // Bsdf::eval's guard. (Scattering::eval_pdf adds this one part, of
-                        // weight 1, to black: the same bits.)
-                        let f = albedo * cos_over_pi.as_array()[j];
-                        let f = if on(front) && f.is_finite() {
-                            f
-                        } else {
-                            Rgb::BLACK
-                        };
-                        let pdf = pdf_lanes.as_array()[j];
-                        let light = light_through(scene, &h.hit, s, (f, pdf), true, stats);
-                        path.l += path.beta * light;
-                    }
+                    // Bsdf::eval's guard. (Scattering::eval_pdf adds this one part, of weight
+                    // 1, to black: the same bits.)
+                    let f = albedo * cos_over_pi.as_array()[j];
+                    let f = if on(front) && f.is_finite() {
+                        f
+                    } else {
+                        Rgb::BLACK
+                    };
+                    let value = (f, pdf_lanes.as_array()[j]);
                     // Lambert::sample and Bsdf::sample: no sample of a black albedo, nor of
                     // one that is not finite. Scattering::sample's sample of one part of weight
                     // 1: its weight and density times 1, the same bits.
                     let useful = albedo.is_finite() && !albedo.is_black();
-                    (useful && on(cosine_ok)).then(|| ScatteringSample {
+                    let sample = (useful && on(cosine_ok)).then(|| ScatteringSample {
                         wi: cosine_wi.lane(j),
                         weight: albedo,
                         pdf: cosine_pdf.as_array()[j],
                         delta: false,
                         reflected: true,
-                    })
+                    });
+                    (Some(value), sample)
                 }
                 LaneBsdf::Glass {
                     eta,
@@ -213,29 +222,28 @@ impl PathTracer {
                         t: frame.t.lane(j),
                         n: frame.n.lane(j),
                     };
-                    glass_sample(
+                    let sample = glass_sample(
                         &frame,
                         (wo.lane(j), wo_local.lane(j), ng.lane(j)),
                         u_lobe[j],
                         (eta, specular, transmittance),
-                    )
+                    );
+                    (None, sample)
                 }
                 LaneBsdf::RoughMirror {
                     eta, k, specular, ..
                 } => {
                     let colours = (eta, k, specular);
-                    if let (Some(s), Some((consistent, r))) = (&lights[j], &rough_light) {
-                        let consistent = consistent.to_bitmask() & (1 << j) != 0;
-                        let f_pdf = rough_light_lane(r, consistent, j, colours);
-                        let light = light_through(scene, &h.hit, s, f_pdf, true, stats);
-                        path.l += path.beta * light;
-                    }
-                    rough_sample.as_ref().and_then(|(ok, wi, (cos, g1, pdf))| {
+                    let value = rough_light
+                        .as_ref()
+                        .map(|r| rough_light_lane(r, consistent, j, colours));
+                    let sample = rough_sample.as_ref().and_then(|(ok, wi, (cos, g1, pdf))| {
                         let terms = (cos.as_array()[j], g1.as_array()[j], pdf.as_array()[j]);
-                        let ok = ok.to_bitmask() & (1 << j) != 0;
-                        ok.then(|| rough_sample_lane(wi.lane(j), terms, colours))
+                        on(ok.to_bitmask())
+                            .then(|| rough_sample_lane(wi.lane(j), terms, colours))
                             .flatten()
-                    })
+                    });
+                    (value, sample)
                 }
                 LaneBsdf::RoughGlass {
                     specular,
@@ -243,48 +251,48 @@ impl PathTracer {
                     ..
                 } => {
                     let tints = (specular, transmittance);
-                    if let (Some(s), Some((consistent, r))) = (&lights[j], &rough_glass_light) {
-                        let consistent = consistent.to_bitmask() & (1 << j) != 0;
-                        let f_pdf = rough_glass_light_lane(r, consistent, j, tints);
-                        let light = light_through(scene, &h.hit, s, f_pdf, true, stats);
-                        path.l += path.beta * light;
-                    }
-                    rough_glass_sample.as_ref().and_then(|(ok, wi, s)| {
+                    let value = rough_glass_light
+                        .as_ref()
+                        .map(|r| rough_glass_light_lane(r, consistent, j, tints));
+                    let sample = rough_glass_sample.as_ref().and_then(|(ok, wi, s)| {
                         let wo_z = wo_local.z.as_array()[j];
-                        let usable = ok.to_bitmask() & (1 << j) != 0;
-                        usable
+                        on(ok.to_bitmask())
                             .then(|| rough_glass_sample_lane((wi.lane(j), s, j), wo_z, tints))
                             .flatten()
-                    })
+                    });
+                    (value, sample)
                 }
                 LaneBsdf::Plastic { base, specular, .. } => {
-                    if let (Some(s), Some((consistent, l))) = (&lights[j], &plastic_light) {
-                        let consistent = consistent.to_bitmask() & (1 << j) != 0;
-                        let f_pdf = plastic_light_lane(l, consistent, j, base);
-                        let light = light_through(scene, &h.hit, s, f_pdf, true, stats);
-                        path.l += path.beta * light;
-                    }
-                    plastic_sample.as_ref().and_then(|(ok, wi, s)| {
-                        let usable = ok.to_bitmask() & (1 << j) != 0;
-                        usable
+                    let value = plastic_light
+                        .as_ref()
+                        .map(|l| plastic_light_lane(l, consistent, j, base));
+                    let sample = plastic_sample.as_ref().and_then(|(ok, wi, s)| {
+                        on(ok.to_bitmask())
                             .then(|| plastic_sample_lane((wi.lane(j), s, j), (base, specular)))
                             .flatten()
-                    })
+                    });
+                    (value, sample)
                 }
                 LaneBsdf::Mirror { eta, k, specular } => {
                     // Conductor::sample: the tint times the Fresnel reflectance at the
                     // viewer's cosine; Bsdf::sample keeps a finite weight that is not black.
                     let weight = specular * fresnel::conductor(wo_local.z.as_array()[j], eta, k);
                     let useful = weight.is_finite() && !weight.is_black();
-                    (useful && on(mirror_ok)).then(|| ScatteringSample {
+                    let sample = (useful && on(mirror_ok)).then(|| ScatteringSample {
                         wi: mirror_wi.lane(j),
                         weight,
                         pdf: 1.0,
                         delta: true,
                         reflected: true,
-                    })
+                    });
+                    (None, sample)
                 }
             };
+            // The light sample (drawn where the surface is not a Dirac delta) through its
+            // shadow ray, weighted by the BSDF's value and density.
+            if let (Some(s), Some(f_pdf)) = (&lights[j], value) {
+                path.l += path.beta * light_through(scene, &h.hit, s, f_pdf, true, stats);
+            }
             let b = sample.and_then(|s| leave(&h.hit, s, stats));
             if !self.go_on(path, b, &h.hit, h.at.u_rr) {
                 ended |= 1 << h.lane;
