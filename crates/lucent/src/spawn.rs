@@ -55,8 +55,10 @@ pub struct Leaving {
     pub outward: bool,
 }
 
-/// A ray leaving the surface of `hit` along `dir` (unit), and what it leaves.
-#[inline]
+/// A ray leaving the surface of `hit` along `dir` (unit), and what it leaves. (Always inlined:
+/// once the lane group's scatter grew with more materials, the compiler stopped inlining it
+/// there, and the Cornell box's paths took 5% longer.)
+#[inline(always)]
 pub fn spawn_ray(hit: &SurfaceHit, dir: Vec3) -> (Ray, Leaving) {
     let outward = hit.normal.dot(dir) >= 0.0;
     let side = if outward { hit.normal } else { -hit.normal };
