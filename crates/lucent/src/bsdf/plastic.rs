@@ -45,7 +45,7 @@ fn mean(c: Rgb) -> f32 {
 /// A plastic's value and density for `(wo, wi)` without its base's colour, written once over
 /// [`Real`] ([`value_and_pdf`]).
 pub(crate) struct PlasticLight<R: Real> {
-    /// Both directions above the surface, and a base to sample (else value and density are 0).
+    /// Both directions above the surface (else value and density are 0).
     pub front: R::Mask,
     /// `(1 − F(θo))·(1 − F(θi))·cos θi/π`: the value is the base's colour times this.
     pub factor: R,
