@@ -104,41 +104,34 @@ impl PathTracer {
         // The light in each frame, and where it does not leak; the same for every material.
         let (lit, local_wi) = light_local(&frame, ng, wi);
         let ((front, cos_over_pi), pdf_lanes) = lambert_value_and_pdf(wo_local, (lit, local_wi));
-        // GGX facets where the surface is rough (roughness 1 elsewhere), a dielectric's index
-        // (1.5 elsewhere), a plastic's specular sampling weight (½ elsewhere).
-        let (alphas, etas): ([(f32, f32); LANES], [f32; LANES]) = (
-            std::array::from_fn(|j| match of(j).bsdf {
-                LaneBsdf::RoughMirror { alpha, .. } | LaneBsdf::RoughGlass { alpha, .. } => alpha,
-                _ => (1.0, 1.0),
-            }),
-            std::array::from_fn(|j| match of(j).bsdf {
-                LaneBsdf::RoughGlass { eta, .. } | LaneBsdf::Plastic { eta, .. } => eta,
-                _ => 1.5,
-            }),
-        );
-        let weights: [f32; LANES] = std::array::from_fn(|j| match of(j).bsdf {
-            LaneBsdf::Plastic { w, .. } => w,
-            _ => 0.5,
-        });
-        let plastic_coat = (f32x8::new(etas), f32x8::new(weights));
-        let ggx = Ggx {
-            alpha_u: f32x8::new(alphas.map(|a| a.0)),
-            alpha_v: f32x8::new(alphas.map(|a| a.1)),
-        };
-        let glass_facets = (ggx, f32x8::new(etas));
+        // The rough and plastic surfaces' parameters in lanes — GGX facets (roughness 1
+        // elsewhere), a dielectric coat's or glass's index (1.5 elsewhere), a plastic's specular
+        // sampling weight (½ elsewhere) — gathered only for the kinds the group holds.
         let any = |kind: fn(&LaneBsdf) -> bool| batch.iter().any(|h| kind(&h.bsdf));
         let rough = any(|b| matches!(b, LaneBsdf::RoughMirror { .. }));
         let rough_glass = any(|b| matches!(b, LaneBsdf::RoughGlass { .. }));
         let plastic = any(|b| matches!(b, LaneBsdf::Plastic { .. }));
-        let rough_light = rough.then(|| reflection(ggx, wo_local, local_wi));
-        let rough_glass_light = rough_glass.then(|| {
-            let (ggx, eta) = glass_facets;
+        let lanes_with = |param: fn(&LaneBsdf) -> Option<f32>, default: f32| {
+            f32x8::new(std::array::from_fn(|j| {
+                param(&of(j).bsdf).unwrap_or(default)
+            }))
+        };
+        let ggx = (rough || rough_glass).then(|| Ggx {
+            alpha_u: lanes_with(|b| b.alpha().map(|a| a.0), 1.0),
+            alpha_v: lanes_with(|b| b.alpha().map(|a| a.1), 1.0),
+        });
+        let eta = (rough_glass || plastic).then(|| lanes_with(LaneBsdf::eta, 1.5));
+        let rough_ggx = ggx.filter(|_| rough);
+        let glass_facets = ggx.zip(eta).filter(|_| rough_glass);
+        let plastic_coat = eta
+            .filter(|_| plastic)
+            .map(|eta| (eta, lanes_with(LaneBsdf::sampling_weight, 0.5)));
+        let rough_light = rough_ggx.map(|ggx| reflection(ggx, wo_local, local_wi));
+        let rough_glass_light = glass_facets.map(|(ggx, eta)| {
             rough_dielectric::value_and_pdf(ggx, eta, (wo_local, local_wi), false)
         });
-        let plastic_light = plastic.then(|| {
-            let (eta, w) = plastic_coat;
-            plastic::value_and_pdf(eta, w, (wo_local, local_wi))
-        });
+        let plastic_light =
+            plastic_coat.map(|(eta, w)| plastic::value_and_pdf(eta, w, (wo_local, local_wi)));
 
         // BSDF sampling's numbers: the lobe's dimension is spent (Lambert has one lobe), the
         // direction's drawn (a mirror draws none).
@@ -156,7 +149,8 @@ impl PathTracer {
         let uy = f32x8::new(u_bsdf.map(|u| u.y));
         let (cosine_ok, cosine_wi, cosine_pdf) = lambert_bounce(&frame, ng, wo, wo_local, (ux, uy));
         let (mirror_ok, mirror_wi) = mirror_bounce(&frame, ng, wo, wo_local);
-        let rough_sample = rough.then(|| rough_bounce(&frame, ng, (wo, wo_local), ggx, (ux, uy)));
+        let rough_sample =
+            rough_ggx.map(|ggx| rough_bounce(&frame, ng, (wo, wo_local), ggx, (ux, uy)));
         // Glass picks reflection or refraction, plastic its coat or its base, with the lobe's
         // number (smooth glass's direction's numbers are not used; the others' are those drawn
         // above), rescaled to its one part as Scattering::sample rescales it (itself, clamped
@@ -165,14 +159,11 @@ impl PathTracer {
         let mut samplers = samplers_of(&picking, |at| at.u_bsdf);
         let u_lobe = at_lanes(&picking, Sampler::next_1d_lanes(&mut samplers), 0.0)
             .map(|u| u.clamp(0.0, 1.0 - f32::EPSILON));
-        let plastic_sample = plastic.then(|| {
-            let u = (f32x8::new(u_lobe), (ux, uy));
-            plastic_bounce(&frame, ng, (wo, wo_local), plastic_coat, u)
-        });
-        let rough_glass_sample = rough_glass.then(|| {
-            let u = (f32x8::new(u_lobe), (ux, uy));
-            rough_glass_bounce(&frame, ng, (wo, wo_local), glass_facets, u)
-        });
+        let u = (f32x8::new(u_lobe), (ux, uy));
+        let plastic_sample =
+            plastic_coat.map(|coat| plastic_bounce(&frame, ng, (wo, wo_local), coat, u));
+        let rough_glass_sample =
+            glass_facets.map(|glass| rough_glass_bounce(&frame, ng, (wo, wo_local), glass, u));
 
         let (lit, front, cosine_ok, mirror_ok) = (
             lit.to_bitmask(),

@@ -107,6 +107,30 @@ pub(super) enum LaneBsdf {
 }
 
 impl LaneBsdf {
+    /// A rough surface's GGX roughness (tangent, bitangent).
+    pub(super) fn alpha(&self) -> Option<(f32, f32)> {
+        match *self {
+            LaneBsdf::RoughMirror { alpha, .. } | LaneBsdf::RoughGlass { alpha, .. } => Some(alpha),
+            _ => None,
+        }
+    }
+
+    /// Rough glass's or a plastic coat's index (made sane).
+    pub(super) fn eta(&self) -> Option<f32> {
+        match *self {
+            LaneBsdf::RoughGlass { eta, .. } | LaneBsdf::Plastic { eta, .. } => Some(eta),
+            _ => None,
+        }
+    }
+
+    /// A plastic's specular sampling weight.
+    pub(super) fn sampling_weight(&self) -> Option<f32> {
+        match *self {
+            LaneBsdf::Plastic { w, .. } => Some(w),
+            _ => None,
+        }
+    }
+
     /// Whether it transmits (glass): a two-sided reflector's normals turn round when it is
     /// seen from the back, glass's do not; and glass picks its lobe with a number.
     pub(super) fn transmits(&self) -> bool {
