@@ -366,7 +366,7 @@ fn a_thin_lens_blurs_what_is_out_of_focus() {
 
 #[test]
 fn paths_in_lanes_make_the_image_of_paths_one_at_a_time() {
-    // A Lambertian ball (shaded in lanes) beside a rough metal one (shaded per path) on a
+    // A Lambertian ball (shaded in lanes) beside a Beckmann-rough metal one (shaded per path) on a
     // Lambertian floor, under a white sky and a point light; 5 samples a pixel, so that lane
     // groups span pixels and end short. Kept in each pixel (the box filter) and splatted.
     let camera = Camera::new(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO, Vec3::Y, 40.0, 20, 15).unwrap();
@@ -380,7 +380,7 @@ fn paths_in_lanes_make_the_image_of_paths_one_at_a_time() {
                 eta: Texture::from(0.2),
                 k: Texture::from(3.0),
                 specular: Texture::from(1.0),
-                roughness: Some(Roughness::isotropic(Distribution::Ggx, 0.3)),
+                roughness: Some(Roughness::isotropic(Distribution::Beckmann, 0.3)),
             },
             &[],
         )
