@@ -6,19 +6,20 @@ use glam::Vec3;
 use crate::Rgb;
 use crate::lanes::{Real, V3};
 
-/// What a smooth dielectric boundary does to light arriving at `cos θi` ([`dielectric`]).
+/// What a smooth dielectric boundary does to light arriving at `cos θi` ([`dielectric`]); over
+/// a [`Real`] for lanes ([`dielectric_of`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DielectricFresnel {
+pub struct DielectricFresnel<R = f32> {
     /// The unpolarised reflectance `F` in `[0, 1]`; 1 under total internal reflection.
-    pub r: f32,
+    pub r: R,
     /// `cos θt` of the transmitted direction, signed: on the other side from `cos θi`. Zero
     /// under total internal reflection (there is no transmitted direction).
-    pub cos_t: f32,
+    pub cos_t: R,
     /// The relative index in the direction of travel, `η_transmitted / η_incident`.
-    pub eta_it: f32,
+    pub eta_it: R,
     /// Its reciprocal `η_incident / η_transmitted`: the factor Snell's law scales the
     /// tangential part of the direction by.
-    pub eta_ti: f32,
+    pub eta_ti: R,
 }
 
 impl DielectricFresnel {
@@ -51,29 +52,13 @@ pub(crate) fn sane_eta(eta: f32) -> f32 {
 /// `r_p = (η cos θi − cos θt)/(η cos θi + cos θt)`, and the unpolarised reflectance is their
 /// mean intensity `F = (r_s² + r_p²)/2`.
 pub fn dielectric(cos_i: f32, eta: f32) -> DielectricFresnel {
-    let f = dielectric_of(cos_i, sane_eta(eta));
-    DielectricFresnel {
-        r: f.r,
-        cos_t: f.cos_t,
-        eta_it: f.eta_it,
-        eta_ti: f.eta_ti,
-    }
-}
-
-/// [`DielectricFresnel`] over a [`Real`]: the terms of [`dielectric`] for one path or for
-/// lanes.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct DielectricOf<R> {
-    pub r: R,
-    pub cos_t: R,
-    pub eta_it: R,
-    pub eta_ti: R,
+    dielectric_of(cos_i, sane_eta(eta))
 }
 
 /// [`dielectric`] written once over [`Real`], for an index already made sane
 /// ([`sane_eta`]): its branches (index-matched, total internal reflection) as lane masks.
 #[inline(always)]
-pub(crate) fn dielectric_of<R: Real>(cos_i: R, eta: R) -> DielectricOf<R> {
+pub(crate) fn dielectric_of<R: Real>(cos_i: R, eta: R) -> DielectricFresnel<R> {
     let (zero, one) = (R::splat(0.0), R::splat(1.0));
     let outside = cos_i.ge(zero);
     let inverse = one / eta;
@@ -95,7 +80,7 @@ pub(crate) fn dielectric_of<R: Real>(cos_i: R, eta: R) -> DielectricOf<R> {
     let (r, cos_t) = (R::select(total, one, r), R::select(total, zero, cos_t));
     // Index-matched: no boundary at all, the light goes straight on.
     let matched = eta.eq(one);
-    DielectricOf {
+    DielectricFresnel {
         r: R::select(matched, zero, r),
         cos_t: R::select(matched, -cos_i, cos_t),
         eta_it,
@@ -110,12 +95,12 @@ pub(crate) fn dielectric_of<R: Real>(cos_i: R, eta: R) -> DielectricOf<R> {
 /// `η_ti`, the normal part `cos θt`.
 #[inline]
 pub fn refract(w: Vec3, m: Vec3, f: &DielectricFresnel) -> Vec3 {
-    m * (w.dot(m) * f.eta_ti + f.cos_t) - w * f.eta_ti
+    refract_of(w.into(), m.into(), f).into()
 }
 
 /// [`refract`] over a [`Real`].
 #[inline(always)]
-pub(crate) fn refract_of<R: Real>(w: V3<R>, m: V3<R>, f: &DielectricOf<R>) -> V3<R> {
+pub(crate) fn refract_of<R: Real>(w: V3<R>, m: V3<R>, f: &DielectricFresnel<R>) -> V3<R> {
     m * (w.dot(m) * f.eta_ti + f.cos_t) - w * f.eta_ti
 }
 
