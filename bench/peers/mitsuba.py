@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import functools
 import hashlib
 import importlib.util
 import json
@@ -77,6 +78,7 @@ PASS_LANES = 1 << 24
 # The scene and its variants
 
 
+@functools.cache
 def base_text() -> str:
     """The compared scene's XML as both renderers read it: the Cornell box's file, or the
     showcase's with its mesh (made on first use), texture and sky as absolute paths."""
