@@ -9,10 +9,9 @@ use lucent_scene::desc::IntegratorName;
 use lucent_scene::desc::settings::{
     FilterName, FilterSamplingName, SamplingName, TriangleTestName,
 };
-use lucent_scene::desc::values::Finite;
 use lucent_scene::framing::{Axis, Framing};
 use lucent_scene::hash::Fingerprint;
-use lucent_scene::{LoadOptions, Loaded, SceneFile, Spanned};
+use lucent_scene::{LoadOptions, Loaded, SceneFile};
 use std::path::{Path, PathBuf};
 
 /// A scene loaded with the command line's settings applied.
@@ -198,63 +197,13 @@ pub fn frame(file: &mut SceneFile, args: &FramingArgs) -> Option<String> {
     None
 }
 
-/// An overridden value has no place in the file: errors about it must not point there.
-fn from_flag<T>(v: T) -> Spanned<T> {
-    Spanned::new(0..0, v)
-}
-
-fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
-    let d = &mut file.desc;
-    if let Some(a) = o.aa {
-        d.render.aa = match a {
-            AaArg::Uniform => SamplingName::Uniform,
-            AaArg::Adaptive => SamplingName::Adaptive,
-            AaArg::Quadtree => SamplingName::Quadtree,
-        };
-        // The file's settings of another sampling no longer apply.
-        let r = &mut d.render;
-        if r.aa == SamplingName::Uniform {
-            (r.aa_threshold, r.aa_depth) = (None, None);
-        }
-        if r.aa != SamplingName::Quadtree {
-            r.aa_block = None;
-        }
-    }
-    // Checked here, so that the errors name the flags rather than the file.
-    let aa = d.render.aa;
-    if aa == SamplingName::Uniform
-        && (o.aa_threshold.is_some() || o.aa_depth.is_some() || o.aa_block.is_some())
-    {
-        bail!("--aa-threshold, --aa-depth and --aa-block need --aa adaptive or quadtree");
-    }
-    if aa == SamplingName::Adaptive && o.aa_block.is_some() {
-        bail!("--aa-block needs --aa quadtree");
-    }
-    if o.spp.is_some() && aa != SamplingName::Uniform {
-        bail!(
-            "--spp has no effect with adaptive or quadtree sampling (each pixel takes its corners)"
-        );
-    }
-    if let Some(t) = o.aa_threshold {
-        d.render.aa_threshold = Some(from_flag(Finite(t)));
-    }
-    if let Some(v) = o.aa_depth {
-        d.render.aa_depth = Some(from_flag(v));
-    }
-    if let Some(v) = o.aa_block {
-        d.render.aa_block = Some(from_flag(v));
-    }
-    if let Some(w) = o.width {
-        d.image.width = from_flag(w);
-    }
-    if let Some(h) = o.height {
-        d.image.height = from_flag(h);
-    }
-    if let Some(n) = o.spp {
-        d.image.samples = from_flag(n);
-    }
-    if let Some(i) = o.integrator {
-        d.render.integrator = match i {
+/// The command line's overrides as the library's ([`lucent_scene::overrides`]).
+fn scene_overrides(o: &Overrides) -> lucent_scene::overrides::Overrides {
+    lucent_scene::overrides::Overrides {
+        width: o.width,
+        height: o.height,
+        spp: o.spp,
+        integrator: o.integrator.map(|i| match i {
             IntegratorArg::Raycast => IntegratorName::Raycast,
             IntegratorArg::Whitted => IntegratorName::Whitted,
             IntegratorArg::Path => IntegratorName::Path,
@@ -265,67 +214,41 @@ fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
             IntegratorArg::DebugId => IntegratorName::DebugId,
             IntegratorArg::DebugBarycentrics => IntegratorName::DebugBarycentrics,
             IntegratorArg::DebugCost => IntegratorName::DebugCost,
-        };
-        // The file's settings of another integrator no longer apply.
-        let r = &mut d.render;
-        if r.integrator != IntegratorName::Whitted {
-            r.shadows = None;
-        }
-        if r.integrator != IntegratorName::Path {
-            r.rr_depth = None;
-        }
-        if r.integrator != IntegratorName::Sppm {
-            (r.photons, r.photon_radius) = (None, None);
-        }
-    }
-    if let Some(m) = o.max_depth {
-        d.render.max_depth = from_flag(m);
-    }
-    if let Some(s) = o.seed {
-        d.render.seed = s;
-    }
-    if let Some(f) = o.filter {
-        d.render.filter = Some(from_flag(match f {
+        }),
+        max_depth: o.max_depth,
+        seed: o.seed,
+        accel: o.accel,
+        triangle_test: o.triangle_test.map(|t| match t {
+            TriangleTestArg::Watertight => TriangleTestName::Watertight,
+            TriangleTestArg::Projection => TriangleTestName::Projection,
+        }),
+        no_shadows: o.no_shadows,
+        aa: o.aa.map(|a| match a {
+            AaArg::Uniform => SamplingName::Uniform,
+            AaArg::Adaptive => SamplingName::Adaptive,
+            AaArg::Quadtree => SamplingName::Quadtree,
+        }),
+        aa_threshold: o.aa_threshold,
+        aa_depth: o.aa_depth,
+        aa_block: o.aa_block,
+        filter: o.filter.map(|f| match f {
             FilterArg::Box => FilterName::Box,
             FilterArg::Tent => FilterName::Tent,
             FilterArg::Gaussian => FilterName::Gaussian,
             FilterArg::Mitchell => FilterName::Mitchell,
-        }));
-        d.render.filter_radius = None;
-    }
-    if let Some(f) = o.filter_sampling {
-        d.render.filter_sampling = Some(from_flag(match f {
+        }),
+        filter_sampling: o.filter_sampling.map(|f| match f {
             FilterSamplingArg::Splat => FilterSamplingName::Splat,
             FilterSamplingArg::Importance => FilterSamplingName::Importance,
-        }));
+        }),
+        time_limit: o.time_limit,
     }
-    if let Some(t) = o.time_limit {
-        if aa != SamplingName::Uniform {
-            bail!("--time-limit needs uniform sampling (--aa uniform)");
-        }
-        d.render.time_limit = Some(from_flag(Finite(t as f32)));
-        // The samples are unbounded unless the command line bounds them too.
-        if o.spp.is_none() {
-            d.image.samples = from_flag(lucent_scene::build::MAX_SAMPLES);
-        }
-    }
-    if let Some(a) = o.accel {
-        d.render.accelerator = from_flag(a.name().to_string());
-    }
-    if let Some(t) = o.triangle_test {
-        d.render.triangle_test = match t {
-            TriangleTestArg::Watertight => TriangleTestName::Watertight,
-            TriangleTestArg::Projection => TriangleTestName::Projection,
-        };
-    }
-    // After the integrator's flag, which it depends on.
-    if o.no_shadows {
-        if d.render.integrator != IntegratorName::Whitted {
-            bail!("--no-shadows applies to the whitted integrator only");
-        }
-        d.render.shadows = Some(from_flag(false));
-    }
-    Ok(())
+}
+
+fn apply(file: &mut SceneFile, o: &Overrides) -> anyhow::Result<()> {
+    scene_overrides(o)
+        .apply(file, lucent_scene::overrides::Spelling::Flags)
+        .map_err(|e| anyhow!(e))
 }
 
 impl Overrides {

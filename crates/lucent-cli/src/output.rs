@@ -170,9 +170,18 @@ pub fn write_density_map(
 
 /// Writes `film` to `path` as `format`, atomically.
 pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
+    write_atomically(path, |out| encode_image(film, format, out))
+}
+
+/// The file `write_image` writes, into `out` (the Python package's inline PNGs are these bytes).
+pub fn encode_image(
+    film: &Film,
+    format: ImageFormat,
+    out: &mut (impl Write + std::io::Seek),
+) -> anyhow::Result<()> {
     let (w, h) = (film.width(), film.height());
     let samples = samples_text(film);
-    write_atomically(path, |out| match format {
+    match format {
         ImageFormat::Png => {
             let mut encoder = png::Encoder::new(&mut *out, w, h);
             encoder.set_color(png::ColorType::Rgb);
@@ -217,7 +226,7 @@ pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Res
                 .map_err(|e| anyhow!("{e}"))
         }
         ImageFormat::Pfm => Ok(write_pfm(out, w, h, &film.to_linear_rgb())?),
-    })
+    }
 }
 
 /// Portable Float Map: a text header, then little-endian floats, rows from the bottom up.

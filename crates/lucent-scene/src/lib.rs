@@ -22,6 +22,7 @@ pub mod mesh_file;
 pub mod mitsuba;
 pub mod mtl;
 pub mod obj;
+pub mod overrides;
 pub mod paths;
 pub mod ply;
 pub mod serialized;
