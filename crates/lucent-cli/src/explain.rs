@@ -5,55 +5,33 @@
 use crate::cli::ExplainArgs;
 use crate::job::Job;
 use crate::output::write_atomically;
-use anyhow::{Context, bail};
+use anyhow::Context;
 use lucent::Rgb;
-use lucent::integrator::record::{Cut, RayKind, RayNode, RayTree};
-use lucent::integrator::{Integrator, RayStats};
-use lucent::render::Sampling;
-use lucent::sampling::pixel_offset;
+use lucent::integrator::explain::{ExplainError, ExplainedSample, explain_pixel};
+use lucent::integrator::record::{Cut, RayKind, RayNode};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::process::ExitCode;
-
-/// Most samples whose trees are printed at once.
-const MAX_SAMPLES: u32 = 64;
 
 /// Traces the pixel's samples with recording on; prints and draws their trees.
 pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
     let job = Job::load(args.scene.as_deref(), &args.overrides)?;
     let scene = &job.loaded.scene;
     let s = &job.loaded.settings;
-    let Integrator::Whitted(whitted) = s.integrator else {
-        bail!(
-            "lucent explain follows the Whitted integrator's rays; this scene uses `{}` (add --integrator whitted)",
-            s.integrator.name()
-        );
-    };
-    if s.sampling != Sampling::Uniform {
-        bail!("lucent explain follows uniform samples; add --aa uniform");
-    }
-    let (w, h) = (scene.camera.width(), scene.camera.height());
-    let (x, y) = args.pixel;
-    if x >= w || y >= h {
-        bail!("pixel {x},{y} is outside the {w}×{h} image");
-    }
     if let Some(svg) = &args.svg {
         crate::output::check_writable(svg)?;
     }
-    let samples = match args.sample {
-        Some(k) if k >= s.spp => bail!(
-            "sample {k} does not exist: the pixel has {} (0 to {})",
-            s.spp,
-            s.spp - 1
-        ),
-        Some(k) => k..k + 1,
-        None if s.spp > MAX_SAMPLES => bail!(
-            "the pixel has {} samples; pick one with --sample K (their trees would fill pages)",
-            s.spp
-        ),
-        None => 0..s.spp,
-    };
-    let pixel = u64::from(y) * u64::from(w) + u64::from(x);
+    let explained = explain_pixel(scene, s, args.pixel, args.sample).map_err(|e| {
+        let (prefix, hint) = match e {
+            ExplainError::NotWhitted(_) => ("lucent ", " (add --integrator whitted)"),
+            ExplainError::NotUniform => ("lucent ", " (add --aa uniform)"),
+            ExplainError::TooManySamples(_) => ("", " (pick one with --sample K)"),
+            _ => ("", ""),
+        };
+        anyhow::anyhow!("{prefix}{e}{hint}")
+    })?;
+    let (x, y) = args.pixel;
+    let (w, h) = (scene.camera.width(), scene.camera.height());
     let mut out = String::new();
     let name = job.scene_path.as_ref().map_or_else(
         || "the built-in scene".to_string(),
@@ -67,17 +45,17 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
     let mut trees = Vec::new();
     let (mut value, mut sum) = (Rgb::BLACK, Rgb::BLACK);
     let mut finite = 0u32;
-    for sample in samples {
-        let (dx, dy) = pixel_offset(s.seed, pixel, sample, s.spp);
-        let ray = scene.camera.ray(x as f32 + dx, y as f32 + dy);
-        let mut tree = RayTree::default();
-        let radiance = whitted.radiance_recorded(scene, &ray, &mut RayStats::default(), &mut tree);
-        let root = tree.root.context("the ray tree was not recorded")?;
+    for ExplainedSample {
+        sample,
+        through,
+        radiance,
+        root,
+    } in explained
+    {
         writeln!(
             out,
             "\nsample {sample}, through ({:.3}, {:.3}):",
-            x as f32 + dx,
-            y as f32 + dy
+            through.0, through.1
         )?;
         print_node(&mut out, &root, 1, scene)?;
         writeln!(out, "  radiance {}", rgb(radiance))?;
@@ -132,14 +110,6 @@ fn at(p: glam::Vec3, scene: &lucent::scene::Scene) -> String {
     format!("({:.3}, {:.3}, {:.3})", p.x, p.y, p.z)
 }
 
-fn kind_name(k: RayKind) -> &'static str {
-    match k {
-        RayKind::Camera => "camera",
-        RayKind::Reflected => "reflected",
-        RayKind::Refracted => "refracted",
-    }
-}
-
 fn print_node(
     out: &mut String,
     node: &RayNode,
@@ -150,7 +120,7 @@ fn print_node(
     writeln!(
         out,
         "{pad}{} ray from {} along {}, weight {}",
-        kind_name(node.kind),
+        node.kind.name(),
         at(node.origin, scene),
         v3(node.dir),
         rgb(node.weight)
@@ -196,12 +166,12 @@ fn print_node(
             Cut::Depth => "max_depth reached: no reflected or refracted ray".to_string(),
             Cut::Weight(k, w) => format!(
                 "{} ray not traced: its weight {} is under min_weight",
-                kind_name(*k),
+                k.name(),
                 rgb(*w)
             ),
             Cut::Budget(k) => format!(
                 "{} ray not traced: the pixel's budget of secondary rays is spent",
-                kind_name(*k)
+                k.name()
             ),
         };
         writeln!(out, "{pad}  {text}")?;
@@ -284,8 +254,8 @@ fn place(
         .map(|c| match c {
             Cut::TotalInternalReflection => "TIR".to_string(),
             Cut::Depth => "depth limit".to_string(),
-            Cut::Weight(k, _) => format!("{} cut: weight", kind_name(*k)),
-            Cut::Budget(k) => format!("{} cut: budget", kind_name(*k)),
+            Cut::Weight(k, _) => format!("{} cut: weight", k.name()),
+            Cut::Budget(k) => format!("{} cut: budget", k.name()),
         })
         .collect();
     if notes.is_empty() {
@@ -305,7 +275,7 @@ fn place(
         if tir { "#b00" } else { "#888" },
         x - CELL_W / 2.0 + 12.0,
         y + 15.0,
-        kind_name(node.kind),
+        node.kind.name(),
         x - CELL_W / 2.0 + 12.0,
         y + 31.0,
         x - CELL_W / 2.0 + 12.0,

@@ -7,6 +7,7 @@
 //! settings struct and `radiance`, a variant here, and its name in [`Integrator::name`].
 
 pub mod debug;
+pub mod explain;
 pub mod path;
 pub mod path_lanes;
 pub mod raycast;

@@ -22,6 +22,17 @@ pub enum RayKind {
     Refracted,
 }
 
+impl RayKind {
+    /// The kind's name as `lucent explain` prints it.
+    pub fn name(self) -> &'static str {
+        match self {
+            RayKind::Camera => "camera",
+            RayKind::Reflected => "reflected",
+            RayKind::Refracted => "refracted",
+        }
+    }
+}
+
 /// Why a ray was not traced, or a refraction became a reflection.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Cut {
