@@ -1,0 +1,86 @@
+"""A teaching widget: sliders that re-render a scene as they move (ipywidgets, optional).
+
+    from lucent.widgets import explore
+    explore(lucent.default_scene())
+
+The maximum depth is a render setting; the index of refraction and the roughness are the
+scene's materials', changed in the scene's TOML (read with ``tomllib``, Python 3.11+) and
+rebuilt with :func:`lucent.load_dict`. A slider appears only for what the scene has.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+from . import Image, Scene, load_dict
+
+
+def _materials(scene: Scene) -> Optional[dict]:
+    """The scene's TOML as a dict, or None when it has none (an imported file) or Python is
+    older than 3.11."""
+    if not scene.text:
+        return None
+    try:
+        import tomllib
+    except ImportError:
+        return None
+    return tomllib.loads(scene.text)
+
+
+def _with(desc: dict, key: str, value: float) -> dict:
+    """``desc`` with every material's ``key`` (where it has one) set to ``value``."""
+    materials = [dict(m, **{key: value}) if key in m else m for m in desc.get("material", [])]
+    return dict(desc, material=materials)
+
+
+class Explorer:
+    """The widget's state and its re-render, apart from the widgets (tested without a browser)."""
+
+    def __init__(self, scene: Scene, **render: Any) -> None:
+        self.scene = scene
+        self.render_args = dict(progress=False, **render)
+        self.desc = _materials(scene)
+        materials = (self.desc or {}).get("material", [])
+        self.ior = next((m["ior"] for m in materials if "ior" in m), None)
+        self.roughness = next((m["roughness"] for m in materials if "roughness" in m), None)
+        self.has_ior = self.ior is not None
+        self.has_roughness = self.roughness is not None
+        self.max_depth = int((self.desc or {}).get("render", {}).get("max_depth", 5))
+        self.image: Optional[Image] = None
+
+    def render(
+        self, max_depth: int, ior: Optional[float] = None, roughness: Optional[float] = None
+    ) -> Image:
+        """The scene with these settings."""
+        scene = self.scene
+        if self.desc is not None and (ior is not None or roughness is not None):
+            desc = self.desc
+            if ior is not None and self.has_ior:
+                desc = _with(desc, "ior", ior)
+            if roughness is not None and self.has_roughness:
+                desc = _with(desc, "roughness", roughness)
+            scene = load_dict(desc, base_dir=self.scene.base_dir)
+        self.image = scene.render(max_depth=max_depth, **self.render_args)
+        return self.image
+
+
+def explore(scene: Scene, width: int = 320, height: int = 240, **render: Any) -> Any:
+    """Sliders for the maximum depth, and for the index of refraction and roughness where the
+    scene's materials have them; the picture below re-renders as they move."""
+    import ipywidgets as w
+    from IPython.display import display
+
+    explorer = Explorer(scene, width=width, height=height, **render)
+    sliders: dict = {
+        "max_depth": w.IntSlider(value=min(explorer.max_depth, 12), min=1, max=12, description="max depth"),
+    }
+    if explorer.has_ior:
+        sliders["ior"] = w.FloatSlider(value=explorer.ior, min=1.0, max=2.5, step=0.01, description="ior")
+    if explorer.has_roughness:
+        sliders["roughness"] = w.FloatSlider(
+            value=explorer.roughness, min=0.0, max=1.0, step=0.01, description="roughness"
+        )
+    out = w.interactive_output(lambda **v: display(explorer.render(**v)), sliders)
+    box = w.VBox([w.HBox(list(sliders.values())), out])
+    box.explorer = explorer
+    return box
