@@ -287,8 +287,8 @@ def load(path: PathLike) -> Scene:
 
 
 def load_string(text: str, format: str = "toml", base_dir: Optional[PathLike] = None) -> Scene:
-    """A scene from text in lucent's TOML format; relative file names in it start from
-    ``base_dir`` (default: the current folder)."""
+    """A scene from text: ``format="toml"`` (lucent's format) or ``"mitsuba"`` (Mitsuba 3 XML);
+    relative file names in it start from ``base_dir`` (default: the current folder)."""
     base = None if base_dir is None else os.fspath(base_dir)
     return Scene(_lucent.load_string(text, format=format, base_dir=base))
 

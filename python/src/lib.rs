@@ -310,8 +310,8 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Scene> {
     Ok(Scene { file })
 }
 
-/// A scene from text: `format` "toml" (lucent's format); relative file names in it start
-/// from `base_dir` (default: the current folder).
+/// A scene from text: `format` "toml" (lucent's format) or "mitsuba" (Mitsuba 3 XML);
+/// relative file names in it start from `base_dir` (default: the current folder).
 #[pyfunction]
 #[pyo3(signature = (text, format="toml", base_dir=None))]
 fn load_string(
@@ -320,14 +320,17 @@ fn load_string(
     format: &str,
     base_dir: Option<PathBuf>,
 ) -> PyResult<Scene> {
-    if format != "toml" {
-        return Err(PyValueError::new_err(format!(
-            "load_string reads format=\"toml\", not {format:?}: load other formats from their files with lucent.load"
-        )));
-    }
-    let base_dir = base_dir.unwrap_or_default();
-    let file = SceneFile::parse(PathBuf::from("<string>"), base_dir, text.clone())
-        .map_err(|e| scene_error(py, &e, &text))?;
+    let (label, base_dir) = (PathBuf::from("<string>"), base_dir.unwrap_or_default());
+    let parsed = match format {
+        "toml" => SceneFile::parse(label, base_dir, text.clone()),
+        "mitsuba" | "xml" => py.detach(|| SceneFile::parse_mitsuba(label, base_dir, text.clone())),
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "load_string reads format=\"toml\" or \"mitsuba\", not {format:?}: load glTF, OBJ and PLY from their files with lucent.load"
+            )));
+        }
+    };
+    let file = parsed.map_err(|e| scene_error(py, &e, &text))?;
     Ok(Scene { file })
 }
 

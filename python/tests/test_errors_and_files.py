@@ -58,8 +58,17 @@ def test_bad_settings_raise_value_errors(kwargs, message):
 
 
 def test_unsupported_string_formats_are_refused():
-    with pytest.raises(ValueError, match="toml"):
-        lucent.load_string("<scene/>", format="xml")
+    with pytest.raises(ValueError, match='"toml" or "mitsuba"'):
+        lucent.load_string("{}", format="gltf")
+
+
+def test_a_bad_mitsuba_string_names_its_line():
+    text = '<scene version="3.0.0">\n  <shape type="sphere">\n    <float name="radius" value="big"/>\n  </shape>\n</scene>\n'
+    with pytest.raises(lucent.SceneError) as e:
+        lucent.load_string(text, format="mitsuba")
+    err = e.value
+    assert err.file == "<string>" and err.line == 3, (err.file, err.line, str(err))
+    assert '<float name="radius" value="big"/>' in str(err), str(err)
 
 
 @pytest.mark.parametrize("ext", [".pfm", ".exr"])

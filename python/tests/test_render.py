@@ -55,6 +55,14 @@ def test_a_scene_from_a_string_equals_its_file(tmp_path):
     assert from_text.path == "<string>"
 
 
+def test_a_mitsuba_scene_from_a_string_equals_its_file():
+    scene = EXAMPLES / "cornell-box.xml"
+    small = dict(width=24, height=24, spp=2, progress=False)
+    from_text = lucent.load_string(scene.read_text(), format="mitsuba", base_dir=EXAMPLES)
+    assert from_text.path == "<string>"
+    assert np.array_equal(from_text.render(**small), lucent.load(scene).render(**small))
+
+
 def test_debug_views_render(lucent_bin, tmp_path):
     scene = EXAMPLES / "materials.toml"
     for view in ("debug:normals", "debug:depth", "debug:albedo"):

@@ -128,7 +128,7 @@ impl SceneFile {
                 ));
             }
         };
-        let Some(mut imported) = imported else {
+        let Some(imported) = imported else {
             let bytes = crate::input::read(path)
                 .map_err(|e| LoadError::file(path, format!("cannot read the scene file: {e}")))?;
             let text = String::from_utf8(bytes).map_err(|e| {
@@ -140,16 +140,6 @@ impl SceneFile {
             return Ok(file);
         };
         within_objects_budget(path, &imported.desc, options)?;
-        let desc = &mut imported.desc;
-        let emits = desc
-            .materials
-            .iter()
-            .any(|m| m.get_ref().emission.is_some());
-        let mut default_light = None;
-        if desc.lights.is_empty() && !emits {
-            import::add_default_light(desc);
-            default_light = Some(desc.lights.len() - 1);
-        }
         // OBJ and PLY files do not say which way is up (glTF is +y up by its specification,
         // Mitsuba scenes place their own cameras): the geometry is asked. The parsed OBJ is
         // reused; a PLY file is decoded once more by the build.
@@ -165,27 +155,73 @@ impl SceneFile {
             }
             _ => None,
         };
-        let mut file = Self {
-            path: path.to_path_buf(),
-            base_dir,
-            text: String::new(),
-            desc: imported.desc,
-            camera_given: imported.camera_given,
-            framing: framing::Framing::default(),
-            up_guess,
-            default_light,
-            warnings: imported.warnings,
-            options: *options,
-            imported: inputs.value(),
-            preloaded,
-        };
+        let mut file = Self::from_import(path, base_dir, imported, options, inputs, preloaded);
         if let Some(g) = up_guess {
+            file.up_guess = Some(g);
             file.set_framing(framing::Framing {
                 up: g.up,
                 view: framing::View::Front,
             });
         }
         Ok(file)
+    }
+
+    /// A scene of Mitsuba 3 XML given as text (not read from a file): `path` names it in
+    /// errors (`<string>`), and relative file names in it start from `base_dir`.
+    pub fn parse_mitsuba(
+        path: PathBuf,
+        base_dir: PathBuf,
+        text: String,
+    ) -> Result<Self, LoadError> {
+        let options = LoadOptions::default();
+        let mut inputs = hash::Fingerprint::default();
+        let imported =
+            mitsuba::import_mitsuba_text(&path, base_dir.clone(), text, &options, &mut inputs)?;
+        within_objects_budget(&path, &imported.desc, &options)?;
+        Ok(Self::from_import(
+            &path,
+            base_dir,
+            imported,
+            &options,
+            inputs,
+            mesh_file::MeshFiles::default(),
+        ))
+    }
+
+    /// The scene of an imported file (within the objects' budget): a default light where it
+    /// has none.
+    fn from_import(
+        path: &Path,
+        base_dir: PathBuf,
+        mut imported: import::Imported,
+        options: &LoadOptions,
+        inputs: hash::Fingerprint,
+        preloaded: mesh_file::MeshFiles,
+    ) -> Self {
+        let desc = &mut imported.desc;
+        let emits = desc
+            .materials
+            .iter()
+            .any(|m| m.get_ref().emission.is_some());
+        let mut default_light = None;
+        if desc.lights.is_empty() && !emits {
+            import::add_default_light(desc);
+            default_light = Some(desc.lights.len() - 1);
+        }
+        Self {
+            path: path.to_path_buf(),
+            base_dir,
+            text: String::new(),
+            desc: imported.desc,
+            camera_given: imported.camera_given,
+            framing: framing::Framing::default(),
+            up_guess: None,
+            default_light,
+            warnings: imported.warnings,
+            options: *options,
+            imported: inputs.value(),
+            preloaded,
+        }
     }
 
     /// How a scene without a camera is framed: the up axis (guessed for OBJ and PLY files,

@@ -83,13 +83,36 @@ pub fn import_mitsuba(
     inputs: &mut Fingerprint,
 ) -> Result<Imported, LoadError> {
     let root = xml::load(path, options, inputs)?;
+    let base_dir = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
+    convert_scene(&root, base_dir, options)
+}
+
+/// [`import_mitsuba`] of XML given as text: `label` names it in errors, and relative file names
+/// start from `base_dir`.
+pub fn import_mitsuba_text(
+    label: &Path,
+    base_dir: PathBuf,
+    text: String,
+    options: &LoadOptions,
+    inputs: &mut Fingerprint,
+) -> Result<Imported, LoadError> {
+    let root = xml::load_text(label, base_dir.clone(), text, options, inputs)?;
+    convert_scene(&root, base_dir, options)
+}
+
+/// The description of a loaded `<scene>`.
+fn convert_scene(
+    root: &Element,
+    base_dir: PathBuf,
+    options: &LoadOptions,
+) -> Result<Imported, LoadError> {
     let mut ids = Ids::new();
-    index(&root, &mut ids)?;
+    index(root, &mut ids)?;
     let mut cx = Convert {
         materials: bsdf::Materials::new(ids.keys().copied()),
         ids,
         options: *options,
-        base_dir: path.parent().map_or_else(PathBuf::new, Path::to_path_buf),
+        base_dir,
         warnings: Vec::new(),
         environment: None,
         search: Vec::new(),

@@ -133,10 +133,33 @@ pub fn load(
     options: &LoadOptions,
     inputs: &mut Fingerprint,
 ) -> Result<Element, LoadError> {
+    let base_dir = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
+    load_from(path, base_dir, None, options, inputs)
+}
+
+/// The `<scene>` of Mitsuba XML given as `text` (not read from a file): `label` names it in
+/// errors, and includes, like every file name, start from `base_dir`.
+pub fn load_text(
+    label: &Path,
+    base_dir: PathBuf,
+    text: String,
+    options: &LoadOptions,
+    inputs: &mut Fingerprint,
+) -> Result<Element, LoadError> {
+    load_from(label, base_dir, Some(text), options, inputs)
+}
+
+fn load_from(
+    path: &Path,
+    base_dir: PathBuf,
+    given: Option<String>,
+    options: &LoadOptions,
+    inputs: &mut Fingerprint,
+) -> Result<Element, LoadError> {
     let mut loader = Loader {
         options,
         inputs,
-        base_dir: path.parent().map_or_else(PathBuf::new, Path::to_path_buf),
+        base_dir,
         params: Vec::new(),
         chain: vec![Opened::new(path)],
         depth: 0,
@@ -144,6 +167,14 @@ pub fn load(
         read: 0,
         texts: HashMap::new(),
     };
+    if let Some(text) = given {
+        // Given text stands where the file would be read: counted and budgeted the same way.
+        loader.inputs.add(text.as_bytes());
+        let key = Opened::new(path).key;
+        loader
+            .texts
+            .insert(path.to_path_buf(), Rc::new(Text { key, text }));
+    }
     let text = loader.text(path, None)?;
     loader.file(path, &text, None)
 }
