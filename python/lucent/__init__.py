@@ -52,7 +52,8 @@ class Image(np.ndarray):
         return img
 
     def __array_finalize__(self, obj: Any) -> None:
-        self.meta = getattr(obj, "meta", {}) if obj is not None else {}
+        # A copy: a slice's meta changed does not change the image's.
+        self.meta = dict(getattr(obj, "meta", {})) if obj is not None else {}
 
     def _repr_png_(self) -> Optional[bytes]:
         if self.ndim != 3 or self.shape[2] != 3 or self.size == 0:
@@ -87,6 +88,10 @@ def _bar(
         return progress, lambda: None
     if progress is False:
         return None, lambda: None
+    if progress is not None and progress is not True:
+        raise TypeError(
+            f"progress is None or True (a bar), False (none) or a callable, not {progress!r}"
+        )
     try:
         from tqdm.auto import tqdm
     except ImportError:
@@ -126,6 +131,7 @@ class Scene:
 
     def render(
         self,
+        *,
         spp: Optional[int] = None,
         integrator: Optional[str] = None,
         width: Optional[int] = None,
@@ -139,6 +145,7 @@ class Scene:
         aa: Optional[str] = None,
         aa_threshold: Optional[float] = None,
         aa_depth: Optional[int] = None,
+        aa_block: Optional[int] = None,
         progress: Union[bool, Progress, None] = None,
     ) -> Image:
         """Renders the scene into an :class:`Image` (linear radiance, float32, H×W×3).
@@ -146,7 +153,8 @@ class Scene:
         Arguments left None keep the scene file's settings (as ``lucent render``'s flags do);
         ``threads=0`` uses every core. ``shadows=False`` leaves Whitted's shadow rays out;
         ``aa="adaptive"`` (or ``"quadtree"``) samples pixel corners and subdivides where they
-        differ by more than ``aa_threshold``, ``aa_depth`` levels at most. ``progress``: None shows a tqdm bar when tqdm is
+        differ by more than ``aa_threshold``, ``aa_depth`` levels at most (``aa_block``: the
+        quadtree's block size, log2). ``progress``: None shows a tqdm bar when tqdm is
         installed, False shows none, a callable is called with (samples done, samples to do).
         Ctrl-C (KeyboardInterrupt) stops the render and returns the partial image with
         ``meta["interrupted"]`` set and a warning.
@@ -167,6 +175,7 @@ class Scene:
                 aa=aa,
                 aa_threshold=aa_threshold,
                 aa_depth=aa_depth,
+                aa_block=aa_block,
                 progress=report,
             )
         finally:
@@ -185,6 +194,7 @@ class Scene:
         self,
         x: int,
         y: int,
+        *,
         sample: Optional[int] = None,
         spp: Optional[int] = None,
         integrator: Optional[str] = None,
@@ -218,6 +228,7 @@ class Scene:
 
     def frameless_study(
         self,
+        *,
         samples_per_second: float = 400_000.0,
         refresh: float = 60.0,
         duration: float = 6.0,

@@ -3,9 +3,10 @@
     from lucent.widgets import explore
     explore(lucent.default_scene())
 
-The maximum depth is a render setting; the index of refraction and the roughness are the
-scene's materials', changed in the scene's TOML (read with ``tomllib``, Python 3.11+) and
-rebuilt with :func:`lucent.load_dict`. A slider appears only for what the scene has.
+The maximum depth is a render setting; the index of refraction and the roughness are those
+of the first of the scene's materials that has one, changed in the scene's TOML (read with
+``tomllib``, Python 3.11+) and rebuilt with :func:`lucent.load_dict`. A slider appears only
+for what the scene has.
 """
 
 from __future__ import annotations
@@ -28,9 +29,21 @@ def _materials(scene: Scene) -> Optional[dict]:
 
 
 def _with(desc: dict, key: str, value: float) -> dict:
-    """``desc`` with every material's ``key`` (where it has one) set to ``value``."""
-    materials = [dict(m, **{key: value}) if key in m else m for m in desc.get("material", [])]
+    """``desc`` with the first material that has ``key`` given ``value`` instead."""
+    materials = list(desc.get("material", []))
+    for i, m in enumerate(materials):
+        if key in m:
+            materials[i] = dict(m, **{key: value})
+            break
     return dict(desc, material=materials)
+
+
+def _first(materials: list, key: str) -> tuple[Optional[float], str]:
+    """The first material's ``key`` that has one, and that material's name."""
+    for m in materials:
+        if key in m:
+            return m[key], m.get("name", "")
+    return None, ""
 
 
 class Explorer:
@@ -41,11 +54,13 @@ class Explorer:
         self.render_args = dict(progress=False, **render)
         self.desc = _materials(scene)
         materials = (self.desc or {}).get("material", [])
-        self.ior = next((m["ior"] for m in materials if "ior" in m), None)
-        self.roughness = next((m["roughness"] for m in materials if "roughness" in m), None)
+        # The sliders move the first material that has the setting (named on the slider).
+        self.ior, self.ior_material = _first(materials, "ior")
+        self.roughness, self.roughness_material = _first(materials, "roughness")
         self.has_ior = self.ior is not None
         self.has_roughness = self.roughness is not None
-        self.max_depth = int((self.desc or {}).get("render", {}).get("max_depth", 5))
+        # The file's maximum depth, else the scene files' default.
+        self.max_depth = int((self.desc or {}).get("render", {}).get("max_depth", 10))
         self.image: Optional[Image] = None
 
     def render(
@@ -72,13 +87,25 @@ def explore(scene: Scene, width: int = 320, height: int = 240, **render: Any) ->
 
     explorer = Explorer(scene, width=width, height=height, **render)
     sliders: dict = {
-        "max_depth": w.IntSlider(value=min(explorer.max_depth, 12), min=1, max=12, description="max depth"),
+        "max_depth": w.IntSlider(
+            value=min(explorer.max_depth, 12), min=0, max=12, description="max depth"
+        ),
     }
     if explorer.has_ior:
-        sliders["ior"] = w.FloatSlider(value=explorer.ior, min=1.0, max=2.5, step=0.01, description="ior")
+        sliders["ior"] = w.FloatSlider(
+            value=explorer.ior,
+            min=1.0,
+            max=2.5,
+            step=0.01,
+            description=f"ior {explorer.ior_material}".strip(),
+        )
     if explorer.has_roughness:
         sliders["roughness"] = w.FloatSlider(
-            value=explorer.roughness, min=0.0, max=1.0, step=0.01, description="roughness"
+            value=explorer.roughness,
+            min=0.0,
+            max=1.0,
+            step=0.01,
+            description=f"roughness {explorer.roughness_material}".strip(),
         )
     out = w.interactive_output(lambda **v: display(explorer.render(**v)), sliders)
     box = w.VBox([w.HBox(list(sliders.values())), out])

@@ -36,6 +36,20 @@ pub fn named_overrides(
     })
 }
 
+/// A count given to a keyword (`spp=16`): a negative or huge one is a `ValueError` naming the
+/// keyword (the ranges themselves are checked with the command's, in `Overrides::apply`).
+pub fn count(setting: &str, value: Option<i64>) -> PyResult<Option<u32>> {
+    value
+        .map(|v| {
+            u32::try_from(v).map_err(|_| {
+                PyValueError::new_err(format!(
+                    "{setting} must be zero or more and below 2³², not {v}"
+                ))
+            })
+        })
+        .transpose()
+}
+
 /// An integrator's name as scene files write it.
 pub fn name(i: IntegratorName) -> String {
     match toml::Value::try_from(i) {

@@ -7,8 +7,18 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use toml::{Table, Value};
 
-/// The TOML value of a Python object at `path` (`material[1].ior`, for errors).
-fn value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
+/// Deepest nesting of dicts and lists taken: scene files nest a few levels; a dict that
+/// contains itself would otherwise recurse until the stack overflows.
+const MAX_NESTING: usize = 32;
+
+/// The TOML value of a Python object at `path` (`material[1].ior`, for errors), `depth`
+/// containers down.
+fn value(obj: &Bound<'_, PyAny>, path: &str, depth: usize) -> PyResult<Value> {
+    if depth > MAX_NESTING {
+        return Err(PyValueError::new_err(format!(
+            "{path}: nested more than {MAX_NESTING} deep (does a dict or list contain itself?)"
+        )));
+    }
     // bool before int: True is an int in Python.
     if obj.is_instance_of::<PyBool>() {
         return Ok(Value::Boolean(obj.extract()?));
@@ -26,13 +36,13 @@ fn value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
         return Ok(Value::String(obj.extract()?));
     }
     if let Ok(d) = obj.cast::<PyDict>() {
-        return table(d, path).map(Value::Table);
+        return table(d, path, depth + 1).map(Value::Table);
     }
     if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
         let items = obj
             .try_iter()?
             .enumerate()
-            .map(|(i, item)| value(&item?, &format!("{path}[{i}]")))
+            .map(|(i, item)| value(&item?, &format!("{path}[{i}]"), depth + 1))
             .collect::<PyResult<Vec<_>>>()?;
         return Ok(Value::Array(items));
     }
@@ -40,7 +50,7 @@ fn value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
     if let Ok(list) = obj.call_method0("tolist")
         && !list.is(obj)
     {
-        return value(&list, path);
+        return value(&list, path, depth + 1);
     }
     let kind = obj.get_type().name()?;
     Err(PyValueError::new_err(format!(
@@ -48,7 +58,7 @@ fn value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
     )))
 }
 
-fn table(d: &Bound<'_, PyDict>, path: &str) -> PyResult<Table> {
+fn table(d: &Bound<'_, PyDict>, path: &str, depth: usize) -> PyResult<Table> {
     let mut t = Table::new();
     for (k, v) in d.iter() {
         let Ok(key) = k.extract::<String>() else {
@@ -65,13 +75,13 @@ fn table(d: &Bound<'_, PyDict>, path: &str) -> PyResult<Table> {
             // TOML has no null: a key given None is left out, as if not given.
             continue;
         }
-        t.insert(key, value(&v, &at)?);
+        t.insert(key, value(&v, &at, depth)?);
     }
     Ok(t)
 }
 
 /// The TOML text of a scene given as a dict.
 pub fn toml_text(scene: &Bound<'_, PyDict>) -> PyResult<String> {
-    let t = table(scene, "")?;
+    let t = table(scene, "", 0)?;
     toml::to_string(&t).map_err(|e| PyValueError::new_err(format!("the scene as TOML: {e}")))
 }

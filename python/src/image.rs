@@ -3,6 +3,7 @@
 
 use lucent::Rgb;
 use lucent::film::Film;
+use lucent_cli::output::ImageFormat;
 use numpy::ndarray::Array3;
 use numpy::{PyArray3, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -20,7 +21,7 @@ pub fn to_array<'py>(py: Python<'py>, film: &Film) -> PyResult<Bound<'py, PyArra
 }
 
 /// A film whose pixels are the array's values (one sample of weight 1 each: the film gives
-/// them back exactly).
+/// finite values back exactly; NaN and infinite ones are left out, as a render's are).
 pub fn to_film(pixels: &PyReadonlyArray3<'_, f32>) -> PyResult<Film> {
     let shape = pixels.shape();
     if shape[2] != 3 {
@@ -52,15 +53,14 @@ pub fn to_film(pixels: &PyReadonlyArray3<'_, f32>) -> PyResult<Film> {
     Ok(film)
 }
 
-/// Writes `film` to `path` in the format its extension names.
-pub fn write(film: &Film, path: &Path) -> anyhow::Result<()> {
-    let format = lucent_cli::output::ImageFormat::from_path(path)?;
+/// Writes `film` to `path` in `format`.
+pub fn write(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
     lucent_cli::output::write_image(film, path, format)
 }
 
 /// The film as the PNG file `lucent render` writes (sRGB, 8 bits), in memory.
 pub fn png(film: &Film) -> anyhow::Result<Vec<u8>> {
     let mut bytes = std::io::Cursor::new(Vec::new());
-    lucent_cli::output::encode_image(film, lucent_cli::output::ImageFormat::Png, &mut bytes)?;
+    lucent_cli::output::encode_image(film, ImageFormat::Png, &mut bytes)?;
     Ok(bytes.into_inner())
 }

@@ -14,16 +14,16 @@ mod image;
 mod polled;
 mod study;
 
-use convert::{meta, name, named_overrides, scene_error};
+use convert::{count, meta, name, named_overrides, scene_error};
 use lucent::integrator::explain::{ExplainError, explain_pixel};
 use lucent::render::{Hooks, render};
 use lucent::study::frameless::{StudySettings, run_study};
 use lucent::study::scene_tracer::SceneTracer;
-use lucent_scene::SceneFile;
 use lucent_scene::overrides::{Overrides, Spelling};
+use lucent_scene::{Loaded, SceneFile};
 use numpy::{PyArray3, PyReadonlyArray3};
 use polled::run_polled;
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::{PyException, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
@@ -69,49 +69,42 @@ impl Scene {
     /// scene file's settings. `progress(done, total)` is called about every 50 ms.
     #[pyo3(signature = (*, spp=None, integrator=None, width=None, height=None, threads=0,
         seed=None, time_limit=None, max_depth=None, filter=None, shadows=true, aa=None,
-        aa_threshold=None, aa_depth=None, progress=None))]
+        aa_threshold=None, aa_depth=None, aa_block=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn render<'py>(
         &self,
         py: Python<'py>,
-        spp: Option<u32>,
+        spp: Option<i64>,
         integrator: Option<&str>,
-        width: Option<u32>,
-        height: Option<u32>,
+        width: Option<i64>,
+        height: Option<i64>,
         threads: usize,
         seed: Option<u64>,
         time_limit: Option<f64>,
-        max_depth: Option<u32>,
+        max_depth: Option<i64>,
         filter: Option<&str>,
         shadows: bool,
         aa: Option<&str>,
         aa_threshold: Option<f32>,
-        aa_depth: Option<u32>,
+        aa_depth: Option<i64>,
+        aa_block: Option<i64>,
         progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>)> {
-        if let Some(t) = time_limit
-            && !(t.is_finite() && t > 0.0)
-        {
-            return Err(PyValueError::new_err(format!(
-                "time_limit must be a positive number of seconds, not {t}"
-            )));
-        }
         let overrides = Overrides {
-            width,
-            height,
-            spp,
-            max_depth,
+            width: count("width", width)?,
+            height: count("height", height)?,
+            spp: count("spp", spp)?,
+            max_depth: count("max_depth", max_depth)?,
             seed,
             time_limit,
             no_shadows: !shadows,
             aa_threshold,
-            aa_depth,
+            aa_depth: count("aa_depth", aa_depth)?,
+            aa_block: count("aa_block", aa_block)?,
             ..named_overrides(integrator, filter, aa)?
         };
         let file = self.with(&overrides)?;
-        let loaded = py
-            .detach(|| file.build())
-            .map_err(|e| scene_error(py, &e, &file.text))?;
+        let loaded = build(py, &file)?;
         let mut settings = loaded.settings;
         settings.threads = threads;
         let (rendered, interrupted) = run_polled(py, progress.as_ref(), |c| {
@@ -138,38 +131,41 @@ impl Scene {
     fn explain<'py>(
         &self,
         py: Python<'py>,
-        x: u32,
-        y: u32,
-        sample: Option<u32>,
-        spp: Option<u32>,
+        x: i64,
+        y: i64,
+        sample: Option<i64>,
+        spp: Option<i64>,
         integrator: Option<&str>,
-        width: Option<u32>,
-        height: Option<u32>,
+        width: Option<i64>,
+        height: Option<i64>,
         seed: Option<u64>,
-        max_depth: Option<u32>,
+        max_depth: Option<i64>,
         shadows: bool,
         aa: Option<&str>,
     ) -> PyResult<Bound<'py, PyList>> {
         let overrides = Overrides {
-            width,
-            height,
-            spp,
-            max_depth,
+            width: count("width", width)?,
+            height: count("height", height)?,
+            spp: count("spp", spp)?,
+            max_depth: count("max_depth", max_depth)?,
             seed,
             no_shadows: !shadows,
             ..named_overrides(integrator, None, aa)?
         };
+        let (x, y, sample) = (
+            count("x", Some(x))?.unwrap_or_default(),
+            count("y", Some(y))?.unwrap_or_default(),
+            count("sample", sample)?,
+        );
         let file = self.with(&overrides)?;
-        let loaded = py
-            .detach(|| file.build())
-            .map_err(|e| scene_error(py, &e, &file.text))?;
+        let loaded = build(py, &file)?;
         let samples = py
             .detach(|| explain_pixel(&loaded.scene, &loaded.settings, (x, y), sample))
             .map_err(|e| {
                 let hint = match e {
                     ExplainError::NotWhitted(_) => " (pass integrator=\"whitted\")",
                     ExplainError::NotUniform => " (pass aa=\"uniform\")",
-                    ExplainError::TooManySamples(_) => " (pick one with sample=K)",
+                    ExplainError::TooManySamples(_) => ": pick one with sample=K",
                     _ => "",
                 };
                 PyValueError::new_err(format!("{e}{hint}"))
@@ -199,8 +195,8 @@ impl Scene {
         seed: u64,
         threads: usize,
         integrator: Option<&str>,
-        width: Option<u32>,
-        height: Option<u32>,
+        width: Option<i64>,
+        height: Option<i64>,
         progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         for (name, v) in [
@@ -227,14 +223,12 @@ impl Scene {
             )));
         }
         let overrides = Overrides {
-            width,
-            height,
+            width: count("width", width)?,
+            height: count("height", height)?,
             ..named_overrides(integrator, None, None)?
         };
         let file = self.with(&overrides)?;
-        let loaded = py
-            .detach(|| file.build())
-            .map_err(|e| scene_error(py, &e, &file.text))?;
+        let loaded = build(py, &file)?;
         let chosen = loaded.settings.integrator;
         if chosen.is_stochastic() {
             return Err(PyValueError::new_err(format!(
@@ -279,15 +273,19 @@ impl Scene {
 
     /// What the scene holds (counts, bounds) and the settings its file gives.
     fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let loaded = py
-            .detach(|| self.file.build())
-            .map_err(|e| scene_error(py, &e, &self.file.text))?;
+        let loaded = build(py, &self.file)?;
         convert::info(py, &self.file, &loaded)
     }
 
     fn __repr__(&self) -> String {
         format!("lucent.Scene({:?})", self.file.path.display().to_string())
     }
+}
+
+/// The scene of `file`, built with the GIL released; its errors as `SceneError`s.
+fn build(py: Python<'_>, file: &SceneFile) -> PyResult<Loaded> {
+    py.detach(|| file.build())
+        .map_err(|e| scene_error(py, &e, &file.text))
 }
 
 impl Scene {
@@ -372,8 +370,10 @@ fn moving_scene() -> Scene {
 #[pyfunction]
 fn write(py: Python<'_>, pixels: PyReadonlyArray3<'_, f32>, path: PathBuf) -> PyResult<()> {
     let film = image::to_film(&pixels)?;
-    py.detach(|| image::write(&film, &path))
-        .map_err(|e| PyException::new_err(format!("{e:#}")))
+    let format = lucent_cli::output::ImageFormat::from_path(&path)
+        .map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
+    py.detach(|| image::write(&film, &path, format))
+        .map_err(|e| PyOSError::new_err(format!("{e:#}")))
 }
 
 /// The PNG file's bytes of an H×W×3 float32 array of linear radiance (sRGB, 8 bits).

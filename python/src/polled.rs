@@ -4,7 +4,8 @@
 
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// How often the calling thread looks up from the work: for Ctrl-C and progress.
@@ -26,15 +27,17 @@ pub fn run_polled<T: Send>(
     progress: Option<&Bound<'_, PyAny>>,
     work: impl FnOnce(Control<'_>) -> T + Send,
 ) -> PyResult<(T, bool)> {
-    let cancel = AtomicBool::new(false);
-    let (done, total) = (AtomicU64::new(0), AtomicU64::new(0));
+    let (cancel, ended) = (AtomicBool::new(false), AtomicBool::new(false));
+    // One lock for the pair, so a poll never sees a new `done` with an old `total`.
+    let counts = Mutex::new((0u64, 0u64));
     let report = |d: u64, t: u64| {
-        done.store(d, Ordering::Relaxed);
-        total.store(t, Ordering::Relaxed);
+        if let Ok(mut c) = counts.lock() {
+            *c = (d, t);
+        }
     };
     let call = |f: &Bound<'_, PyAny>| {
-        f.call1((done.load(Ordering::Relaxed), total.load(Ordering::Relaxed)))
-            .map(drop)
+        let (d, t) = counts.lock().map_or((0, 0), |c| *c);
+        f.call1((d, t)).map(drop)
     };
     let mut stopped_by: Option<PyErr> = None;
     let result = std::thread::scope(|s| {
@@ -42,9 +45,21 @@ pub fn run_polled<T: Send>(
             cancel: &cancel,
             report: &report,
         };
-        let worker = s.spawn(move || work(control));
-        while !worker.is_finished() {
-            py.detach(|| std::thread::sleep(POLL));
+        // The worker's end wakes the caller at once, not at the next poll.
+        let caller = std::thread::current();
+        let ended = &ended;
+        let worker = s.spawn(move || {
+            let result = work(control);
+            ended.store(true, Ordering::Release);
+            caller.unpark();
+            result
+        });
+        loop {
+            py.detach(|| std::thread::park_timeout(POLL));
+            // (A worker that panicked never says it ended.)
+            if ended.load(Ordering::Acquire) || worker.is_finished() {
+                break;
+            }
             if stopped_by.is_some() {
                 continue;
             }

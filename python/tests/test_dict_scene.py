@@ -5,10 +5,10 @@ import pytest
 
 import lucent
 from conftest import EXAMPLES
-from test_render import SHARED, needs_shared
+from test_render import can_render
 
 tomllib = pytest.importorskip("tomllib", reason="tomllib comes with Python 3.11")
-TOML_SCENES = sorted(p for p in EXAMPLES.glob("*.toml") if not needs_shared(p) or SHARED.is_dir())
+TOML_SCENES = sorted(p for p in EXAMPLES.glob("*.toml") if can_render(p))
 
 
 @pytest.mark.parametrize("scene", TOML_SCENES, ids=lambda p: p.name)
@@ -61,3 +61,15 @@ def test_a_value_toml_cannot_hold_names_its_key():
         lucent.load_dict({"material": [{"name": "m", "kd": object()}]})
     with pytest.raises(ValueError, match="keys are strings"):
         lucent.load_dict({"render": {1: 2}})
+
+
+def test_a_dict_that_contains_itself_is_refused_not_a_crash():
+    looped = {"camera": {}}
+    looped["camera"]["again"] = looped
+    with pytest.raises(ValueError, match="nested more than 32 deep"):
+        lucent.load_dict(looped)
+    deep: list = []
+    for _ in range(100_000):
+        deep = [deep]
+    with pytest.raises(ValueError, match="nested more than"):
+        lucent.load_dict({"object": deep})

@@ -1,5 +1,7 @@
 """Bad input as Python exceptions with their place; images written and shown."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -48,13 +50,27 @@ def test_a_bad_string_scene_names_the_string():
     [
         (dict(integrator="magic"), "integrator"),
         (dict(filter="blurry"), "filter"),
-        (dict(time_limit=-1.0), "time_limit"),
-        (dict(integrator="path", width=0), "width"),
+        (dict(time_limit=-1.0), "time_limit must be a positive number of seconds, not -1"),
+        (dict(integrator="path", width=0), "width must be between 1 and 65536, not 0"),
+        (dict(spp=0), "spp must be between 1 and 1048576, not 0"),
+        (dict(spp=-3), "spp must be zero or more"),
+        (dict(max_depth=1001), "max_depth must be between 0 and 1000, not 1001"),
+        (dict(aa="quadtree", aa_block=9), "aa_block must be between 1 and 4, not 9"),
+        (dict(aa_block=2), 'aa_threshold, aa_depth and aa_block need aa="adaptive" or quadtree'),
     ],
 )
-def test_bad_settings_raise_value_errors(kwargs, message):
-    with pytest.raises((ValueError, lucent.SceneError), match=message):
+def test_bad_settings_raise_value_errors_naming_the_keyword(kwargs, message):
+    # A ValueError, not a SceneError: the scene file is not at fault.
+    with pytest.raises(ValueError, match=re.escape(message)):
         lucent.default_scene().render(progress=False, **kwargs)
+
+
+def test_writing_names_what_went_wrong(tmp_path):
+    img = lucent.default_scene().render(width=8, height=6, progress=False)
+    with pytest.raises(ValueError, match="jpg"):
+        lucent.write(img, tmp_path / "out.jpg")
+    with pytest.raises(OSError, match="cannot create"):
+        lucent.write(img, tmp_path / "no-such-folder" / "out.png")
 
 
 def test_unsupported_string_formats_are_refused():

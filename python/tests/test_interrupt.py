@@ -1,6 +1,7 @@
 """Ctrl-C in the middle of a render: the render stops promptly and the partial image comes back."""
 
 import json
+import select
 import signal
 import subprocess
 import sys
@@ -41,6 +42,9 @@ def test_ctrl_c_returns_the_partial_image_promptly():
         text=True,
     )
     try:
+        # The child says when its render has started (a hung child fails, not hangs, the test).
+        ready, _, _ = select.select([proc.stdout], [], [], 60)
+        assert ready, "the render never started"
         assert proc.stdout.readline().strip() == "started"
         time.sleep(0.3)
         sent = time.monotonic()

@@ -11,7 +11,7 @@ pytest.importorskip("tomllib", reason="the widget edits materials with tomllib (
 SMALL = dict(width=24, height=18)
 
 
-def test_sliders_change_what_they_name_and_nothing_else():
+def test_the_files_values_give_its_picture_and_each_slider_changes_it():
     scene = lucent.load(EXAMPLES / "whitted.toml")
     explorer = Explorer(scene, **SMALL)
     assert explorer.has_ior and not explorer.has_roughness
@@ -22,6 +22,8 @@ def test_sliders_change_what_they_name_and_nothing_else():
     assert not np.array_equal(explorer.render(max_depth=10, ior=1.0), same)
     assert not np.array_equal(explorer.render(max_depth=1, ior=1.5), same)
     assert explorer.image is not None and explorer.image.shape == (18, 24, 3)
+    # The slider starts where the file is.
+    assert explorer.ior == 1.5 and explorer.max_depth == 10
 
 
 def test_explore_builds_the_sliders_the_scene_has():
@@ -30,5 +32,6 @@ def test_explore_builds_the_sliders_the_scene_has():
 
     box = explore(lucent.load(EXAMPLES / "whitted.toml"), **SMALL)
     names = [s.description for s in box.children[0].children]
-    assert names == ["max depth", "ior"]
+    assert names == ["max depth", "ior glass"]
     assert box.explorer.image is not None
+    assert [s.value for s in box.children[0].children] == [10, 1.5]

@@ -25,7 +25,7 @@ pub fn run(args: &ExplainArgs) -> anyhow::Result<ExitCode> {
         let (prefix, hint) = match e {
             ExplainError::NotWhitted(_) => ("lucent ", " (add --integrator whitted)"),
             ExplainError::NotUniform => ("lucent ", " (add --aa uniform)"),
-            ExplainError::TooManySamples(_) => ("", " (pick one with --sample K)"),
+            ExplainError::TooManySamples(_) => ("", ": pick one with --sample K"),
             _ => ("", ""),
         };
         anyhow::anyhow!("{prefix}{e}{hint}")

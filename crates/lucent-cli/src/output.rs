@@ -55,8 +55,18 @@ pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<File>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    let tmp = temporary_path(path);
-    lock_temporaries().push(tmp.clone());
+    let tmp = {
+        // Two threads writing one path (the Python package releases the GIL) each get their
+        // own temporary file.
+        let mut in_use = lock_temporaries();
+        let (mut n, mut tmp) = (0, temporary_path(path, 0));
+        while in_use.contains(&tmp) {
+            n += 1;
+            tmp = temporary_path(path, n);
+        }
+        in_use.push(tmp.clone());
+        tmp
+    };
     let result = (|| {
         let file =
             File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
@@ -121,12 +131,15 @@ pub fn check_writable(path: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn temporary_path(path: &Path) -> PathBuf {
+fn temporary_path(path: &Path, n: u32) -> PathBuf {
     let mut name = path
         .file_name()
         .map(|n| n.to_os_string())
         .unwrap_or_default();
     name.push(format!(".tmp-{}", std::process::id()));
+    if n > 0 {
+        name.push(format!("-{n}"));
+    }
     path.with_file_name(name)
 }
 

@@ -6,10 +6,12 @@
 //! name the settings the way the caller spells them ([`Spelling`]).
 
 use crate::SceneFile;
+use crate::build::{MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES};
 use crate::desc::IntegratorName;
 use crate::desc::settings::{FilterName, FilterSamplingName, SamplingName, TriangleTestName};
 use crate::desc::values::Finite;
 use lucent::accel::AccelKind;
+use lucent::schedule::adaptive::MAX_DEPTH as ADAPTIVE_MAX_DEPTH;
 use toml::Spanned;
 
 /// How errors spell a setting: `--aa-threshold` on the command line, `aa_threshold` in Python.
@@ -90,10 +92,41 @@ fn given<T>(v: T) -> Spanned<T> {
 }
 
 impl Overrides {
+    /// Checks the counts against the ranges the command line's flags take, so that an error
+    /// names the setting rather than the scene file it replaced a value of.
+    fn within_ranges(&self, spelling: Spelling) -> Result<(), String> {
+        let ranges = [
+            ("width", self.width, 1, MAX_IMAGE_SIDE),
+            ("height", self.height, 1, MAX_IMAGE_SIDE),
+            ("spp", self.spp, 1, MAX_SAMPLES),
+            ("max_depth", self.max_depth, 0, MAX_DEPTH),
+            ("aa_depth", self.aa_depth, 0, ADAPTIVE_MAX_DEPTH),
+            ("aa_block", self.aa_block, 1, 4),
+        ];
+        for (setting, value, least, most) in ranges {
+            if let Some(v) = value
+                && !(least..=most).contains(&v)
+            {
+                return Err(format!(
+                    "{} must be between {least} and {most}, not {v}",
+                    spelling.name(setting)
+                ));
+            }
+        }
+        match self.time_limit {
+            Some(t) if !(t.is_finite() && t > 0.0) => Err(format!(
+                "{} must be a positive number of seconds, not {t}",
+                spelling.name("time_limit")
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// Replaces `file`'s settings with these, after checking that they go together. The file's
     /// settings that only another integrator or sampling reads are dropped with it.
     pub fn apply(&self, file: &mut SceneFile, spelling: Spelling) -> Result<(), String> {
         let name = |s: &str| spelling.name(s);
+        self.within_ranges(spelling)?;
         let d = &mut file.desc;
         if let Some(aa) = self.aa {
             d.render.aa = aa;
@@ -185,7 +218,7 @@ impl Overrides {
             d.render.time_limit = Some(given(Finite(t as f32)));
             // The samples are unbounded unless the caller bounds them too.
             if self.spp.is_none() {
-                d.image.samples = given(crate::build::MAX_SAMPLES);
+                d.image.samples = given(MAX_SAMPLES);
             }
         }
         if let Some(a) = self.accel {
@@ -235,6 +268,39 @@ mod tests {
         .apply(&mut file, Spelling::Keywords)
         .unwrap_err();
         assert_eq!(e, "shadows=False applies to the whitted integrator only");
+    }
+
+    #[test]
+    fn counts_out_of_range_are_named_not_blamed_on_the_file() {
+        let mut file = SceneFile::default_scene();
+        let zero_spp = Overrides {
+            spp: Some(0),
+            ..Overrides::default()
+        };
+        assert_eq!(
+            zero_spp.apply(&mut file, Spelling::Keywords),
+            Err("spp must be between 1 and 1048576, not 0".to_string())
+        );
+        let wide = Overrides {
+            width: Some(70_000),
+            ..Overrides::default()
+        };
+        assert_eq!(
+            wide.apply(&mut file, Spelling::Flags),
+            Err("--width must be between 1 and 65536, not 70000".to_string())
+        );
+        let never = Overrides {
+            time_limit: Some(-1.0),
+            ..Overrides::default()
+        };
+        assert!(never.apply(&mut file, Spelling::Keywords).is_err());
+        // Nothing was replaced by a refused override.
+        let fresh = SceneFile::default_scene().desc;
+        assert_eq!(
+            file.desc.image.samples.get_ref(),
+            fresh.image.samples.get_ref()
+        );
+        assert_eq!(file.desc.image.width.get_ref(), fresh.image.width.get_ref());
     }
 
     #[test]

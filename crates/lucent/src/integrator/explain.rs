@@ -56,7 +56,7 @@ pub enum ExplainError {
         spp: u32,
     },
     /// Too many samples to give every tree.
-    #[error("the pixel has {0} samples; pick one (their trees would fill pages)")]
+    #[error("the pixel has {0} samples, whose trees would fill pages")]
     TooManySamples(u32),
     /// The integrator recorded no tree (a bug).
     #[error("the ray tree of sample {0} was not recorded")]
