@@ -91,22 +91,15 @@ def explore(scene: Scene, width: int = 320, height: int = 240, **render: Any) ->
             value=min(explorer.max_depth, 12), min=0, max=12, description="max depth"
         ),
     }
-    if explorer.has_ior:
-        sliders["ior"] = w.FloatSlider(
-            value=explorer.ior,
-            min=1.0,
-            max=2.5,
-            step=0.01,
-            description=f"ior {explorer.ior_material}".strip(),
-        )
-    if explorer.has_roughness:
-        sliders["roughness"] = w.FloatSlider(
-            value=explorer.roughness,
-            min=0.0,
-            max=1.0,
-            step=0.01,
-            description=f"roughness {explorer.roughness_material}".strip(),
-        )
+    # A material's setting: its range, and the material's name on the slider.
+    for key, value, material, least, most in (
+        ("ior", explorer.ior, explorer.ior_material, 1.0, 2.5),
+        ("roughness", explorer.roughness, explorer.roughness_material, 0.0, 1.0),
+    ):
+        if value is not None:
+            sliders[key] = w.FloatSlider(
+                value=value, min=least, max=most, step=0.01, description=f"{key} {material}".strip()
+            )
     out = w.interactive_output(lambda **v: display(explorer.render(**v)), sliders)
     box = w.VBox([w.HBox(list(sliders.values())), out])
     box.explorer = explorer
