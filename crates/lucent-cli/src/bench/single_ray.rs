@@ -12,6 +12,10 @@
 //! machine that slows for a moment then slows every contender on the same chunk (they run
 //! within a few hundredths of a second of each other), and the slow round of that chunk does
 //! not count.
+//!
+//! The kernel's and the peers' builds (over the same triangle soup) are timed as the least of
+//! [`BUILD_ROUNDS`] builds each; the scene query's row keeps the time of the one build of the
+//! whole scene that loading it made.
 
 use super::rays::RaySet;
 use super::report::{self, Measurement, Row, SETS};
@@ -80,9 +84,11 @@ pub fn kernel(triangles: &[[Vec3; 3]]) -> Contender<'static> {
     let indices: Vec<[u32; 3]> = (0..triangles.len() as u32)
         .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
         .collect();
-    let start = Instant::now();
-    let bvh = WideTriangleBvh::new(&positions, &indices);
-    let build_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (bvh, build_ms) = least_build_time(|| {
+        let start = Instant::now();
+        let bvh = WideTriangleBvh::new(&positions, &indices);
+        (bvh, start.elapsed().as_secs_f64() * 1e3)
+    });
     let (nodes, depth, bytes) = bvh.info();
     Contender {
         name: report::KERNEL.to_string(),
@@ -90,6 +96,22 @@ pub fn kernel(triangles: &[[Vec3; 3]]) -> Contender<'static> {
         info: Some((nodes, depth, bytes as f64 / triangles.len().max(1) as f64)),
         tracer: Box::new(Kernel(bvh)),
     }
+}
+
+/// Builds timed per contender: the least of these counts. A build is short, and one build's
+/// time moved by ±20% from run to run with the machine (first touches of fresh memory most).
+pub const BUILD_ROUNDS: usize = 5;
+
+/// Runs `build` (which returns what it built and its time in milliseconds) [`BUILD_ROUNDS`]
+/// times: the last structure, and the least time.
+pub fn least_build_time<T>(mut build: impl FnMut() -> (T, f64)) -> (T, f64) {
+    let (mut built, mut least) = build();
+    for _ in 1..BUILD_ROUNDS {
+        let (again, ms) = build();
+        built = again;
+        least = least.min(ms);
+    }
+    (built, least)
 }
 
 /// Measures every contender on every set and thread count, in turn (see the module's docs);
