@@ -4,6 +4,7 @@
 
 mod image_lights;
 mod lights;
+mod material_keys;
 pub mod materials;
 mod motion;
 mod objects;

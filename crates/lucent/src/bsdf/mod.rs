@@ -19,7 +19,7 @@
 //!   no density: its samples carry `delta = true` and, in `pdf`, the discrete probability of
 //!   having chosen that lobe; `eval` and `pdf` ignore Dirac lobes entirely (they are zero there).
 //! - **Consistency.** For a non-delta sample `s`, `s.weight == eval(wo, s.wi) / pdf(wo, s.wi)`
-//!   and `s.pdf == pdf(wo, s.wi)`, up to rounding (the tests in `bsdf/tests.rs` hold every
+//!   and `s.pdf == pdf(wo, s.wi)`, up to rounding (the tests in `bsdf/tests/` hold every
 //!   variant to this, and χ²-test every sampling routine against its `pdf`).
 //! - **Failure.** `sample` returns `None` when nothing is scattered (the wrong side, a grazing
 //!   `wo`, a sampled direction below the horizon, black coefficients). No method returns NaN or
@@ -38,8 +38,9 @@
 //!    `sample` in the local frame, the formulas above the code, analytic tests at the bottom.
 //! 2. Add the variant to [`Bsdf`] and its arm to `Bsdf::model`; the compiler lists the other
 //!    `match`es to extend.
-//! 3. Add it to the tables in `bsdf/tests.rs`: the χ² cases (if it has a non-delta lobe), the
-//!    weight/pdf consistency list, the energy list and, if it reflects, the reciprocity list.
+//! 3. Add it to the tables in `bsdf/tests/`: the χ² cases (`mod.rs`, if it has a non-delta
+//!    lobe), and in `weights_and_energy.rs` the weight/pdf consistency list, the energy list and,
+//!    if it reflects, the reciprocity list.
 
 use glam::{Vec2, Vec3};
 
