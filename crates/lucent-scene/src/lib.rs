@@ -19,6 +19,7 @@ pub mod import;
 pub mod input;
 pub mod limits;
 pub mod mesh_file;
+pub mod mesh_import;
 pub mod mitsuba;
 pub mod mtl;
 pub mod obj;
@@ -110,13 +111,13 @@ impl SceneFile {
         let mut preloaded = mesh_file::MeshFiles::default();
         let imported = match ext.as_deref() {
             Some("toml") | None => None,
-            Some("obj") => Some(import::import_obj(
+            Some("obj") => Some(mesh_import::import_obj(
                 path,
                 options,
                 &mut inputs,
                 &mut preloaded,
             )?),
-            Some("ply") => Some(import::import_ply(path)),
+            Some("ply") => Some(mesh_import::import_ply(path)),
             Some("gltf" | "glb") => Some(gltf_file::import_gltf(path, options, &mut inputs)?),
             Some("xml") => Some(mitsuba::import_mitsuba(path, options, &mut inputs)?),
             Some(other) => {

@@ -243,7 +243,11 @@ fn read_buffer_file(file: &Path, declared: usize) -> Result<Vec<u8>, String> {
 
 /// The glTF document in `json`: parsed, its required extensions checked, validated. `text`:
 /// whether `json` is the whole file (a `.gltf`), so that JSON errors can carry a line.
-pub(super) fn parse_document(json: &[u8], path: &Path, text: bool) -> Result<gltf::Document, LoadError> {
+pub(super) fn parse_document(
+    json: &[u8],
+    path: &Path,
+    text: bool,
+) -> Result<gltf::Document, LoadError> {
     let mut root: gltf::json::Root = gltf::json::deserialize::from_slice(json).map_err(|e| {
         // serde_json's message ends with " at line L column C"; the position goes in its field.
         let shown = e.to_string();

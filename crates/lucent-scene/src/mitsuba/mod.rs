@@ -52,6 +52,7 @@
 pub mod bsdf;
 pub mod emitter;
 pub mod ior;
+mod numbers;
 pub mod props;
 pub mod sensor;
 pub mod shape;

@@ -10,6 +10,7 @@
 //! not model (a film's `pixel_format`) from a misspelt one without Mitsuba's whole vocabulary,
 //! so what is left unread becomes a warning, not an error.
 
+use super::numbers::{number, numbers};
 use super::spectrum::{self, Role};
 use super::transform;
 use super::xml::{Element, Loc};
@@ -451,34 +452,6 @@ pub enum NumberOrName<'a> {
     Number(f64, &'a Loc),
     /// A name, and where it is.
     Name(&'a str, &'a Loc),
-}
-
-/// The parts of a list: separated by commas and white space, as Mitsuba's tokenizer does.
-pub fn split(text: &str) -> impl Iterator<Item = &str> {
-    text.split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|s| !s.is_empty())
-}
-
-/// `text` as a finite number that also fits an `f32`, or an error at `loc`.
-pub fn number(text: &str, loc: &Loc) -> Result<f64, LoadError> {
-    let t = text.trim();
-    let v: f64 = t
-        .parse()
-        .map_err(|_| loc.error(format!("cannot read `{t}` as a number")))?;
-    if !v.is_finite() {
-        return Err(loc.error(format!("expected a finite number, found `{t}`")));
-    }
-    if !(v as f32).is_finite() {
-        return Err(loc.error(format!(
-            "`{t}` is beyond single precision (at most about 3.4e38)"
-        )));
-    }
-    Ok(v)
-}
-
-/// The numbers of a list (see [`split`]).
-pub fn numbers(text: &str, loc: &Loc) -> Result<Vec<f64>, LoadError> {
-    split(text).map(|t| number(t, loc)).collect()
 }
 
 #[cfg(test)]

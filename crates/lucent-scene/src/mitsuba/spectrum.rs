@@ -47,7 +47,8 @@
 
 mod cie;
 
-use super::props::{Ids, Plugin, number, numbers, split};
+use super::numbers::{number, numbers, split};
+use super::props::{Ids, Plugin};
 use super::xml::{Element, Loc};
 use crate::error::LoadError;
 use lucent::Rgb;

@@ -14,7 +14,7 @@
 //! the axis seen from its tip (right-handed). The arithmetic is in double precision and rounded
 //! to single once, at the end.
 
-use super::props::{number, numbers};
+use super::numbers::{number, numbers};
 use super::xml::{Element, Loc};
 use crate::desc::Matrix;
 use crate::error::LoadError;

@@ -32,7 +32,7 @@ use super::vertex::{Bounce, Vertex, footprint_of_sample};
 use super::{RayStats, unless_untraceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
-use crate::lanes::Real;
+use crate::sampling::mis::power_heuristic;
 use crate::sampling::sobol::Sampler;
 use crate::scene::{Beam, Scene};
 use crate::shape::SurfaceHit;
@@ -56,25 +56,6 @@ impl Default for PathTracer {
             rr_depth: 5,
         }
     }
-}
-
-/// The power heuristic with exponent 2 for a sample of density `a` against one of density `b`.
-#[inline]
-pub fn power_heuristic(a: f32, b: f32) -> f32 {
-    power_heuristic_of(a, b)
-}
-
-/// [`power_heuristic`] for any [`Real`], written once for one path and for lanes: 0 where `a`
-/// is not positive or either density is NaN, 1 where `a` is infinite.
-#[inline(always)]
-pub fn power_heuristic_of<R: Real>(a: R, b: R) -> R {
-    // As a ratio, so that squares of huge densities cannot overflow: a²/(a²+b²) = 1/(1+(b/a)²).
-    let one = R::splat(1.0);
-    let r = b / a;
-    let w = one / (one + r * r);
-    let w = R::select(a.eq(R::splat(f32::INFINITY)), one, w);
-    let none = !a.gt(R::splat(0.0)) | !b.eq(b);
-    R::select(none, R::splat(0.0), w)
 }
 
 impl PathTracer {
@@ -289,19 +270,4 @@ pub(super) struct Arrival {
     pub u_bsdf: Sampler,
     /// Russian roulette's (1).
     pub u_rr: Sampler,
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_power_heuristic_weights_sum_to_one() {
-        for (a, b) in [(1.0, 1.0), (3.0, 0.5), (0.0, 2.0), (1e-20, 1e-20)] {
-            let sum = power_heuristic(a, b) + power_heuristic(b, a);
-            assert!((sum - 1.0).abs() < 1e-6, "{a}, {b}: {sum}");
-        }
-        assert_eq!(power_heuristic(f32::INFINITY, 1.0), 1.0);
-        assert_eq!(power_heuristic(0.0, 0.0), 0.0);
-    }
 }

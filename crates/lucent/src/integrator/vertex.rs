@@ -2,12 +2,12 @@
 //! photon mapper) see it: the material resolved at a hit ([`Scattering`]), direct light by
 //! light sampling, and the next direction by BSDF sampling — free functions they share.
 
-use super::path::power_heuristic;
 use super::{RayStats, traceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::light::EmitterSample;
 use crate::material::{Geometry, Scattering, ScatteringSample};
+use crate::sampling::mis::power_heuristic;
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
 use crate::spawn::{Leaving, spawn_ray};

@@ -5,6 +5,7 @@
 //! image does not depend on the number of threads, the order of tiles, or how the work is split.
 
 pub mod distribution;
+pub mod mis;
 pub mod sobol;
 pub mod stratified;
 pub mod warp;
