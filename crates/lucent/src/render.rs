@@ -31,6 +31,7 @@ use thiserror::Error;
 
 mod camera_sample;
 mod lanes;
+mod sppm;
 use camera_sample::{at_instant, camera_ray, draw};
 use lanes::Tracing;
 
@@ -285,9 +286,7 @@ pub fn render(
         })?;
     let threads = pool.current_num_threads();
     if let Some(sppm) = sppm {
-        return Ok(pool.install(|| {
-            crate::integrator::sppm::render_sppm(scene, settings, &sppm, hooks, begin)
-        }));
+        return Ok(pool.install(|| sppm::render_sppm(scene, settings, &sppm, hooks, begin)));
     }
     let filter = FilterSampler::new(settings.filter).map_err(RenderError::Filter)?;
     let splat = adaptive.is_none()

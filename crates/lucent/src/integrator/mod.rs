@@ -167,7 +167,7 @@ impl Integrator {
             Integrator::Debug(view) => debug::radiance(*view, scene, ray, stats),
             Integrator::Path(p) => p.radiance_in(scene, beam, ray, sampler, stats),
             // One ray alone cannot be photon mapped (the estimate needs every pixel's visible
-            // point: the renderer runs `sppm::render_sppm`); it is path traced.
+            // point: the renderer runs the photon mapper's iterations); it is path traced.
             Integrator::Sppm(s) => PathTracer {
                 max_depth: s.max_depth,
                 ..PathTracer::default()

@@ -18,8 +18,8 @@
 //! `Σ L_direct / K + τ / (K·n·π·R²)`.
 //!
 //! Unlike the other integrators this one is not a function of one camera ray: its estimate
-//! depends on the visible points of every pixel, so it owns its progressive loop
-//! ([`render_sppm`]), driven by the renderer. Deterministic: each camera path and each photon
+//! depends on the visible points of every pixel: its state is an [`Estimate`] of the whole
+//! image, whose iterations the renderer runs (`render/sppm.rs`). Deterministic: each camera path and each photon
 //! draws from a [`Sampler`] keyed by (seed, pixel or photon, iteration), photons are traced in
 //! fixed chunks whose deposits are added in chunk order, and the grid of visible points is
 //! filled in pixel order — so the image does not depend on the number of threads.
@@ -29,13 +29,10 @@ use super::{RayStats, UNTRACEABLE};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::film::Film;
-use crate::render::{Hooks, RenderSettings, RenderStats, Rendered};
 use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
-use std::sync::atomic::Ordering;
-use std::time::Instant;
 
 /// Settings of the photon mapper.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,66 +92,73 @@ struct VisiblePoint<'a> {
     beta: Rgb,
 }
 
-/// Renders with the photon mapper: `settings.spp` iterations (or fewer when stopped or out of
-/// time); the film holds each pixel's estimate as that many samples.
-pub fn render_sppm(
-    scene: &Scene,
-    settings: &RenderSettings,
-    sppm: &Sppm,
-    hooks: &Hooks,
-    begin: Instant,
-) -> Rendered {
-    let (width, height) = (scene.camera.width(), scene.camera.height());
-    let pixels = width as usize * height as usize;
-    let radius = if sppm.radius > 0.0 {
-        sppm.radius
-    } else {
-        let b = scene.bounds();
-        let distance = if b.is_empty() {
-            1.0
+/// The photon mapper's running estimate of the image: every pixel's statistics, and the photons
+/// an iteration traces. The renderer runs its iterations ([`Estimate::iterate`], in
+/// `render/sppm.rs`) and makes its film ([`Estimate::film`]).
+pub struct Estimate {
+    state: Vec<PixelState>,
+    photons: usize,
+    width: u32,
+    height: u32,
+}
+
+impl Estimate {
+    /// No iterations yet, for `scene`'s camera: every pixel at the first radius.
+    pub fn new(scene: &Scene, sppm: &Sppm) -> Self {
+        let (width, height) = (scene.camera.width(), scene.camera.height());
+        let pixels = width as usize * height as usize;
+        let radius = if sppm.radius > 0.0 {
+            sppm.radius
         } else {
-            (b.center() - scene.camera.eye()).length().max(1e-3)
+            let b = scene.bounds();
+            let distance = if b.is_empty() {
+                1.0
+            } else {
+                (b.center() - scene.camera.eye()).length().max(1e-3)
+            };
+            3.0 * scene.camera.pixel_size_at(distance)
         };
-        3.0 * scene.camera.pixel_size_at(distance)
-    };
-    let photons = if sppm.photons == 0 {
-        pixels
-    } else {
-        sppm.photons as usize
-    }
-    .min(MAX_PHOTONS_PER_ITERATION as usize);
-    let mut state = vec![
-        PixelState {
-            direct: Rgb::BLACK,
-            tau: Rgb::BLACK,
-            n: 0.0,
-            radius,
-        };
-        pixels
-    ];
-    let deadline = settings.time_limit.map(|t| begin + t);
-    let mut stats = RayStats::default();
-    let mut iterations = 0u32;
-    let total = u64::from(settings.spp) * pixels as u64;
-    while iterations < settings.spp {
-        // The first iteration is whole however short the time limit.
-        let out_of_time = iterations > 0 && deadline.is_some_and(|d| Instant::now() >= d);
-        if hooks.cancel.load(Ordering::Relaxed) || out_of_time {
-            break;
+        let photons = if sppm.photons == 0 {
+            pixels
+        } else {
+            sppm.photons as usize
         }
-        let k = iterations;
-        // With a shutter, each iteration sees the scene at an instant of its own: its camera
-        // and photon passes together, the instants spread evenly over the shutter in order.
-        let instant = scene
-            .shutter()
-            .filter(|_| scene.blurs())
-            .map(|shutter| scene.at_time(shutter.at(iteration_time(settings.seed, k))));
-        let scene = instant.as_ref().unwrap_or(scene);
-        // 1. Camera pass: a visible point and the direct light per pixel. (A stop request
-        // ends the render between iterations: one takes well under a second.)
+        .min(MAX_PHOTONS_PER_ITERATION as usize);
+        let state = vec![
+            PixelState {
+                direct: Rgb::BLACK,
+                tau: Rgb::BLACK,
+                n: 0.0,
+                radius,
+            };
+            pixels
+        ];
+        Self {
+            state,
+            photons,
+            width,
+            height,
+        }
+    }
+
+    /// Iteration `k` on `scene`: its camera pass, its photon pass, and the radii shrunk where
+    /// photons arrived. `stop` is asked before each chunk of photons; when it says yes the
+    /// iteration is dropped whole. Returns whether the iteration was taken, and the rays traced
+    /// (a dropped iteration's camera rays).
+    pub fn iterate(
+        &mut self,
+        scene: &Scene,
+        seed: u64,
+        sppm: &Sppm,
+        k: u32,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> (bool, RayStats) {
+        let (pixels, photons, width) = (self.state.len(), self.photons, self.width);
+        let mut stats = RayStats::default();
+        // 1. Camera pass: a visible point and the direct light per pixel.
         let camera: Vec<(Option<VisiblePoint<'_>>, Rgb, RayStats)> = (0..pixels)
             .into_par_iter()
-            .map(|i| camera_path(scene, settings.seed, sppm, i, k, width))
+            .map(|i| camera_path(scene, seed, sppm, i, k, width))
             .collect();
         let mut points = Vec::with_capacity(pixels);
         let mut directs = Vec::with_capacity(pixels);
@@ -164,11 +168,8 @@ pub fn render_sppm(
             points.push(vp);
         }
         // 2. Photon pass: deposits near the visible points, chunk by chunk in order.
-        let grid = Grid::new(&points, &state);
-        let stop = || {
-            hooks.cancel.load(Ordering::Relaxed)
-                || (k > 0 && deadline.is_some_and(|d| Instant::now() >= d))
-        };
+        let state = &self.state;
+        let grid = Grid::new(&points, state);
         let chunks: Vec<Option<ChunkDeposits>> = (0..photons.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
@@ -180,13 +181,13 @@ pub fn render_sppm(
                 for p in c * CHUNK..((c + 1) * CHUNK).min(photons) {
                     trace_photon(
                         scene,
-                        settings.seed,
+                        seed,
                         sppm,
                         p,
                         k,
                         &grid,
                         &points,
-                        &state,
+                        state,
                         &mut deposits,
                         &mut s,
                     );
@@ -194,11 +195,10 @@ pub fn render_sppm(
                 Some((deposits, s))
             })
             .collect();
-        // An interrupted photon pass drops the iteration (its rays stay counted).
         let Some(chunks) = chunks.into_iter().collect::<Option<Vec<_>>>() else {
-            break;
+            return (false, stats);
         };
-        for (st, direct) in state.iter_mut().zip(directs) {
+        for (st, direct) in self.state.iter_mut().zip(directs) {
             st.direct += direct;
         }
         let mut flux = vec![Rgb::BLACK; pixels];
@@ -211,7 +211,7 @@ pub fn render_sppm(
             }
         }
         // 3. Shrink the radii where photons arrived.
-        for (i, st) in state.iter_mut().enumerate() {
+        for (i, st) in self.state.iter_mut().enumerate() {
             let m = count[i] as f32;
             if m == 0.0 {
                 continue;
@@ -223,54 +223,44 @@ pub fn render_sppm(
             st.n = n;
             st.radius = r;
         }
-        iterations += 1;
-        let done = u64::from(iterations) * pixels as u64;
-        (hooks.progress)(done, total);
+        (true, stats)
     }
 
-    let mut film = Film::new(width, height);
-    let k = iterations.max(1) as f32;
-    let photons_total = f64::from(iterations) * photons as f64;
-    for y in 0..height {
-        for x in 0..width {
-            let st = &state[(y * width + x) as usize];
-            let area = std::f64::consts::PI * f64::from(st.radius) * f64::from(st.radius);
-            let indirect = if photons_total > 0.0 {
-                st.tau * (1.0 / (photons_total * area)) as f32
-            } else {
-                Rgb::BLACK
-            };
-            let value = st.direct / k + indirect;
-            let finite = value.is_finite();
-            stats.nonfinite += u64::from(!finite && iterations > 0);
-            // The estimate as `iterations` samples of weight 1.
-            if iterations > 0 {
-                film.add_sample(x, y, finite.then_some(value), k);
-                film.count_samples(x, y, iterations - 1);
+    /// The film of `iterations` complete iterations: each pixel's estimate as that many samples
+    /// of weight 1, and the number of pixels whose estimate is not finite (left out).
+    pub fn film(&self, iterations: u32) -> (Film, u64) {
+        let (width, height) = (self.width, self.height);
+        let mut film = Film::new(width, height);
+        let mut nonfinite = 0;
+        let k = iterations.max(1) as f32;
+        let photons_total = f64::from(iterations) * self.photons as f64;
+        for y in 0..height {
+            for x in 0..width {
+                let st = &self.state[(y * width + x) as usize];
+                let area = std::f64::consts::PI * f64::from(st.radius) * f64::from(st.radius);
+                let indirect = if photons_total > 0.0 {
+                    st.tau * (1.0 / (photons_total * area)) as f32
+                } else {
+                    Rgb::BLACK
+                };
+                let value = st.direct / k + indirect;
+                let finite = value.is_finite();
+                nonfinite += u64::from(!finite && iterations > 0);
+                // The estimate as `iterations` samples of weight 1.
+                if iterations > 0 {
+                    film.add_sample(x, y, finite.then_some(value), k);
+                    film.count_samples(x, y, iterations - 1);
+                }
             }
         }
-    }
-    let complete = iterations == settings.spp
-        || (deadline.is_some_and(|d| Instant::now() >= d) && !hooks.cancel.load(Ordering::Relaxed));
-    Rendered {
-        film,
-        stats: RenderStats {
-            rays: stats,
-            samples: u64::from(iterations) * pixels as u64,
-            elapsed: begin.elapsed(),
-            threads: rayon::current_num_threads(),
-        },
-        complete,
-        timed_out: complete && iterations < settings.spp,
-        samples_range: (iterations, iterations),
-        density: Vec::new(),
+        (film, nonfinite)
     }
 }
 
 /// The fraction of the shutter at which iteration `k` sees the scene: `k`'s bits reversed
 /// (so that every run of iterations from the first spreads evenly over the shutter), turned by
 /// an offset from the seed.
-fn iteration_time(seed: u64, k: u32) -> f32 {
+pub fn iteration_time(seed: u64, k: u32) -> f32 {
     let spread = (f64::from(k.reverse_bits()) / 2f64.powi(32)) as f32;
     let u = spread + crate::sampling::uniform(seed, u64::MAX, 0, 4);
     if u >= 1.0 { u - 1.0 } else { u }
