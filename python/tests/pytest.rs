@@ -13,9 +13,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The packages the tests need besides lucent; nbclient and ipykernel run the notebook,
-/// ipywidgets makes the teaching widget's sliders.
-/// maturin writes the package's metadata as a wheel would hold it.
+/// The packages the tests need besides lucent: maturin writes the package's metadata as its
+/// wheel holds it, nbclient and ipykernel run the notebook, ipywidgets makes the teaching
+/// widget's sliders.
 const PACKAGES: &[&str] = &[
     "maturin>=1.5,<2",
     "numpy",
