@@ -8,7 +8,6 @@ use numpy::ndarray::Array3;
 use numpy::{PyArray3, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use std::path::Path;
 
 /// The film's linear radiance as an H×W×3 array, rows from the top: the film's one linear copy
 /// (as `lucent render` makes for a PFM), handed to numpy without another.
@@ -51,11 +50,6 @@ pub fn to_film(pixels: &PyReadonlyArray3<'_, f32>) -> PyResult<Film> {
         }
     }
     Ok(film)
-}
-
-/// Writes `film` to `path` in `format`.
-pub fn write(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
-    lucent_cli::output::write_image(film, path, format)
 }
 
 /// The film as the PNG file `lucent render` writes (sRGB, 8 bits), in memory.

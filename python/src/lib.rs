@@ -372,7 +372,7 @@ fn write(py: Python<'_>, pixels: PyReadonlyArray3<'_, f32>, path: PathBuf) -> Py
     let film = image::to_film(&pixels)?;
     let format = lucent_cli::output::ImageFormat::from_path(&path)
         .map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
-    py.detach(|| image::write(&film, &path, format))
+    py.detach(|| lucent_cli::output::write_image(&film, &path, format))
         .map_err(|e| PyOSError::new_err(format!("{e:#}")))
 }
 

@@ -6,7 +6,7 @@
 //! name the settings the way the caller spells them ([`Spelling`]).
 
 use crate::SceneFile;
-use crate::build::{MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES};
+use crate::build::{MAX_AA_BLOCK, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES};
 use crate::desc::IntegratorName;
 use crate::desc::settings::{FilterName, FilterSamplingName, SamplingName, TriangleTestName};
 use crate::desc::values::Finite;
@@ -101,7 +101,7 @@ impl Overrides {
             ("spp", self.spp, 1, MAX_SAMPLES),
             ("max_depth", self.max_depth, 0, MAX_DEPTH),
             ("aa_depth", self.aa_depth, 0, ADAPTIVE_MAX_DEPTH),
-            ("aa_block", self.aa_block, 1, 4),
+            ("aa_block", self.aa_block, 1, MAX_AA_BLOCK),
         ];
         for (setting, value, least, most) in ranges {
             if let Some(v) = value

@@ -51,6 +51,8 @@ pub const RADIUS_RANGE: std::ops::RangeInclusive<f32> = 1e-8..=1e15;
 pub const MAX_SAMPLES: u32 = 1 << 20;
 /// Deepest recursion allowed.
 pub const MAX_DEPTH: u32 = 1000;
+/// Largest `aa_block` (a quadtree block of 2^4 = 16 pixels on a side).
+pub const MAX_AA_BLOCK: u32 = 4;
 /// The narrowest reconstruction filter, in pixels. A narrower one weighs little but the
 /// pixel's centre, and in single precision it stops working at all: a Gaussian (σ 0.5) of
 /// radius below about 2·10⁻⁴ is zero at its centre, and a Mitchell filter of radius 10⁻⁴⁵ has
@@ -681,8 +683,8 @@ fn sampling(r: &RenderDesc, source: &Source) -> Result<Sampling, LoadError> {
                 check(
                     source,
                     span,
-                    (1..=4).contains(&b),
-                    "aa_block must be between 1 and 4",
+                    (1..=MAX_AA_BLOCK).contains(&b),
+                    &format!("aa_block must be between 1 and {MAX_AA_BLOCK}"),
                 )?;
                 b
             }
