@@ -110,6 +110,7 @@ pub fn meta<'py>(
     rays.set_item("reflected", s.reflected)?;
     rays.set_item("refracted", s.refracted)?;
     rays.set_item("photons", s.photons)?;
+    rays.set_item("scattered", s.scattered)?;
     rays.set_item("total", s.total())?;
     d.set_item("rays", rays)?;
     d.set_item("mrays_per_second", r.stats.mrays_per_second())?;

@@ -441,11 +441,13 @@ pub fn parse_shard(spec: &str) -> anyhow::Result<Shard> {
 /// The one statistics line printed after a render.
 fn summary(output: &Path, w: u32, h: u32, samples: &str, s: &RenderStats) -> String {
     let r = &s.rays;
-    let photons = if r.photons > 0 {
-        format!(", photon {}", r.photons)
-    } else {
-        String::new()
-    };
+    let mut photons = String::new();
+    if r.photons > 0 {
+        photons += &format!(", photon {}", r.photons);
+    }
+    if r.scattered > 0 {
+        photons += &format!(", scattered in media {}", r.scattered);
+    }
     format!(
         "{}: {w}×{h}, {samples}, {} rays (camera {}, shadow {}, reflected {}, refracted {}{photons}), {:.3} s, {:.3} Mrays/s, {} threads",
         output.display(),

@@ -23,6 +23,7 @@ pub mod integrator;
 pub mod lanes;
 pub mod light;
 pub mod material;
+pub mod medium;
 pub mod motion;
 pub mod optics;
 pub mod render;

@@ -14,6 +14,7 @@ pub mod raycast;
 pub mod record;
 pub mod sppm;
 pub mod vertex;
+pub mod volpath;
 pub mod whitted;
 
 pub use debug::DebugView;
@@ -46,6 +47,8 @@ pub struct RayStats {
     pub untraceable: u64,
     /// Rays of photons from the lights (the photon mapper): one per segment of a photon's path.
     pub photons: u64,
+    /// Rays scattered in participating media (the volumetric path tracer).
+    pub scattered: u64,
     /// Accelerator work over all rays.
     pub traversal: TraversalStats,
 }
@@ -53,7 +56,7 @@ pub struct RayStats {
 impl RayStats {
     /// All rays traced.
     pub fn total(&self) -> u64 {
-        self.camera + self.shadow + self.reflected + self.refracted + self.photons
+        self.camera + self.shadow + self.reflected + self.refracted + self.photons + self.scattered
     }
 }
 
@@ -66,6 +69,7 @@ impl std::ops::AddAssign for RayStats {
         self.nonfinite += o.nonfinite;
         self.untraceable += o.untraceable;
         self.photons += o.photons;
+        self.scattered += o.scattered;
         self.traversal += o.traversal;
     }
 }

@@ -80,6 +80,9 @@ impl PathTracer {
         sampler: &mut Sampler,
         stats: &mut RayStats,
     ) -> Rgb {
+        if scene.has_media() {
+            return self.radiance_through_media(scene, camera_ray, sampler, stats);
+        }
         let untraceable = stats.untraceable;
         let mut path = Path::new(camera_ray);
         loop {
@@ -205,7 +208,7 @@ impl PathTracer {
         path: &mut Path,
         b: Option<Bounce>,
         hit: &SurfaceHit,
-        mut u_rr: Sampler,
+        u_rr: Sampler,
     ) -> bool {
         let Some(b) = b else {
             return false;
@@ -214,6 +217,13 @@ impl PathTracer {
         path.last = (!b.sample.delta).then_some((hit.point, b.sample.pdf));
         path.ray = b.ray;
         path.from = Some(b.from);
+        self.roulette(path, u_rr)
+    }
+
+    /// Counts the bounce just taken and, past `rr_depth` bounces, plays Russian roulette with
+    /// `u_rr`: whether the path goes on.
+    #[inline(always)]
+    pub(super) fn roulette(&self, path: &mut Path, mut u_rr: Sampler) -> bool {
         let depth = path.depth;
         path.depth += 1;
         if depth + 1 >= self.rr_depth {

@@ -23,11 +23,11 @@ pub(super) struct Tracing<'a, T> {
 
 impl<'a, T> Tracing<'a, T> {
     /// Lanes when the settings allow them ([`RenderSettings::lanes`]), the integrator is the
-    /// path tracer, every sample sees the scene at one instant (no motion blur), and lanes shade
-    /// some of its materials; else one sample at a time.
+    /// path tracer, every sample sees the scene at one instant (no motion blur), the scene has
+    /// no media, and lanes shade some of its materials; else one sample at a time.
     pub fn new(scene: &'a Scene, settings: &RenderSettings) -> Self {
         let lanes = match settings.integrator {
-            Integrator::Path(tracer) if settings.lanes && !scene.blurs() => {
+            Integrator::Path(tracer) if settings.lanes && !scene.blurs() && !scene.has_media() => {
                 let materials = LaneMaterials::of(scene);
                 materials.any().then_some((tracer, materials))
             }

@@ -1,7 +1,9 @@
 //! Collecting a scene's parts, checking them, and building the accelerators.
 
 use super::animation::{Animation, moved_sphere};
-use super::{MaterialNeeds, Merged, MeshAccel, MeshEntry, ObjectTag, Scene};
+use super::{
+    MaterialNeeds, MediaError, Merged, MeshAccel, MeshEntry, ObjectTag, Scene, SceneMedia,
+};
 use crate::Rgb;
 use crate::camera::Camera;
 use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
@@ -86,6 +88,9 @@ pub enum SceneError {
     /// A sphere's motion scales unevenly.
     #[error("object {0} is a sphere: its motion must scale alike on every axis")]
     SphereScaleNotUniform(u32),
+    /// The media are wrong.
+    #[error(transparent)]
+    Media(#[from] MediaError),
     /// A texture or the environment names an image that does not exist.
     #[error("image {image} is used, but the scene has {count} images")]
     NoSuchImage {
@@ -119,6 +124,7 @@ pub struct SceneBuilder {
     accelerator: AccelKind,
     triangle_test: TriangleTest,
     origin: glam::DVec3,
+    media: SceneMedia,
 }
 
 impl SceneBuilder {
@@ -145,7 +151,13 @@ impl SceneBuilder {
             accelerator: AccelKind::default(),
             triangle_test: TriangleTest::default(),
             origin: glam::DVec3::ZERO,
+            media: SceneMedia::default(),
         }
+    }
+
+    /// The participating media, to add to ([`SceneMedia`]).
+    pub fn media(&mut self) -> &mut SceneMedia {
+        &mut self.media
     }
 
     /// Where this scene's coordinates have their zero in the world the scene was described in
@@ -421,6 +433,7 @@ impl SceneBuilder {
     /// Checks the parts and builds the accelerators.
     pub fn build(mut self) -> Result<Scene, SceneError> {
         self.check()?;
+        self.media.check(self.objects)?;
         let motions = self.motions()?;
         let start = Instant::now();
         // Static motions are applied once; the others are kept with the objects' rest state,
@@ -623,6 +636,7 @@ impl SceneBuilder {
             origin: self.origin,
             build_time,
             emitters: Arc::new(emitters),
+            media: Arc::new(self.media),
         };
         scene.place(0.0);
         Ok(scene)

@@ -21,12 +21,14 @@ mod animation;
 mod beam;
 mod builder;
 mod cutout;
+mod media;
 mod packet;
 mod query;
 mod shutter;
 
 pub use beam::Beam;
 pub use builder::{SceneBuilder, SceneError};
+pub use media::{MediaError, SceneMedia};
 pub use shutter::{Shutter, ShutterError};
 
 use crate::Rgb;
@@ -223,6 +225,8 @@ pub struct Scene {
     /// Whether any material is partly cut away (`Material::opacity`): queries then look past
     /// the surfaces a ray passes through ([`Scene::intersect_opaque`]).
     has_cutouts: bool,
+    /// Participating media and the objects that bound them.
+    media: Arc<SceneMedia>,
 }
 
 /// What a hit on a material needs worked out, decided once when the scene is built: these are
