@@ -245,6 +245,7 @@ impl Framing {
             orthographic: None,
             motion: None,
             shutter: None,
+            medium: None,
         }
     }
 

@@ -327,6 +327,7 @@ pub fn import_gltf(
         materials,
         lights,
         objects,
+        media: Vec::new(),
     };
     // glTF's materials are physically based: the path tracer renders them as written, at
     // enough samples for a first look (`--spp`, `--time-limit` choose otherwise).
@@ -728,6 +729,7 @@ fn camera_of(
         orthographic,
         motion: None,
         shutter: None,
+        medium: None,
     };
     Ok((camera, aspect))
 }

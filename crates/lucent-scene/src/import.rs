@@ -36,6 +36,7 @@ pub fn placeholder_camera() -> Spanned<CameraDesc> {
             orthographic: None,
             motion: None,
             shutter: None,
+            medium: None,
         },
     )
 }

@@ -116,7 +116,13 @@ fn a_white_medium_in_an_index_matched_sphere_keeps_the_furnace_white() {
         }
     }
     let mean = sum / 36.0;
-    assert!((mean - Rgb::WHITE).to_array().iter().all(|d| d.abs() < 0.005), "mean {mean:?}");
+    assert!(
+        (mean - Rgb::WHITE)
+            .to_array()
+            .iter()
+            .all(|d| d.abs() < 0.005),
+        "mean {mean:?}"
+    );
     assert!(worst < 0.04, "worst pixel {worst} from 1");
 }
 

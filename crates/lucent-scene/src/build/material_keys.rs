@@ -27,6 +27,7 @@ fn takes(kind: MaterialKind) -> &'static [&'static str] {
     match kind {
         MaterialKind::Whitted => &["ka", "kd", "ks", "shininess", "kr", "kt", "ior"],
         MaterialKind::Diffuse => &["reflectance"],
+        MaterialKind::Null => &[],
         MaterialKind::Conductor => &["specular", "eta", "k", "metal"],
         MaterialKind::RoughConductor => &[
             "specular", "eta", "k", "metal", ROUGH[0], ROUGH[1], ROUGH[2], ROUGH[3],

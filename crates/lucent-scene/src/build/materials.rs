@@ -78,6 +78,9 @@ impl<'d> Materials<'d> {
                 material.opacity = Some(t);
             }
         }
+        if d.kind() == MaterialKind::Null {
+            material.opacity = Some(Texture::from(0.0));
+        }
         material.two_sided = d.two_sided.unwrap_or(true);
         material.vertex_colors = d.vertex_colors.unwrap_or(true);
         material.cull_back = d.cull_back.unwrap_or(false);
@@ -318,6 +321,9 @@ fn leaf(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Surface, LoadErr
     };
     Ok(match kind {
         MaterialKind::Whitted => Surface::Classic,
+        MaterialKind::Null => Surface::Diffuse {
+            reflectance: Texture::from(0.0),
+        },
         MaterialKind::Diffuse => Surface::Diffuse {
             reflectance: tex(ctx, &d.reflectance, 0.5, Slot::Color)?,
         },

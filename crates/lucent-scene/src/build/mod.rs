@@ -6,6 +6,7 @@ mod image_lights;
 mod lights;
 mod material_keys;
 pub mod materials;
+mod media;
 mod motion;
 mod objects;
 mod photometric;
@@ -331,6 +332,18 @@ pub fn build_with_files(
 
     let sppm = matches!(settings.integrator, Integrator::Sppm(_));
     lights::add_lights(desc, &mut ctx, path, sppm)?;
+    let media = media::Media::add(desc, &mut ctx)?;
+    if let Some(name) = &cam.medium {
+        let id = media.named(&ctx, name)?;
+        ctx.builder.media().camera_in(Some(id));
+    }
+    if !desc.media.is_empty() && !matches!(settings.integrator, Integrator::Path(_)) {
+        ctx.warnings.push(format!(
+            "{}: the {} integrator renders no participating media (the path tracer does): they are left out",
+            source.path.display(),
+            settings.integrator.name()
+        ));
+    }
 
     let mut meshes = objects::MeshCache::new();
     let mut emitters = Vec::new();
@@ -354,7 +367,12 @@ pub fn build_with_files(
             ));
         };
         let emissive = !ke.is_black();
+        let object = ctx.builder.objects();
         let added = objects::add_object(&mut ctx, &mut meshes, o, material, emissive, glows)?;
+        let interface = media.interface(&ctx, &d.interior, &d.exterior)?;
+        if interface.is_transition() {
+            ctx.builder.media().bound_by(object, interface);
+        }
         if let Some(surface) = added {
             emitters.push((ke, surface));
         }

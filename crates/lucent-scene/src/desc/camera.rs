@@ -38,6 +38,9 @@ pub struct CameraDesc {
     /// blur); without it, at time 0 (or `--time`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shutter: Option<Spanned<[Finite; 2]>>,
+    /// The `[[medium]]` the camera sits in (fog); default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub medium: Option<Spanned<String>>,
 }
 
 fn default_up() -> Vector {

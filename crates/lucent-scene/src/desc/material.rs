@@ -48,6 +48,9 @@ pub enum MaterialKind {
     /// `iridescence`, `iridescence_ior`, `iridescence_thickness`, `diffuse_transmission`,
     /// `diffuse_transmission_color`.
     Pbr,
+    /// Nothing at all: rays cross it unchanged (the boundary of a medium of the same index as
+    /// its surroundings; Mitsuba's `null`). The same as `opacity = 0`.
+    Null,
 }
 
 impl MaterialKind {
@@ -67,6 +70,7 @@ impl MaterialKind {
             MaterialKind::Principled => "principled",
             MaterialKind::PrincipledThin => "principledthin",
             MaterialKind::Pbr => "pbr",
+            MaterialKind::Null => "null",
         }
     }
 

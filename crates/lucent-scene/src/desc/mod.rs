@@ -8,6 +8,7 @@
 pub mod camera;
 pub mod light;
 pub mod material;
+pub mod medium;
 pub mod motion;
 pub mod object;
 pub mod settings;
@@ -17,6 +18,7 @@ pub mod values;
 pub use camera::CameraDesc;
 pub use light::{FalloffName, LightDesc, LightKind, MappingName, TexelsName};
 pub use material::{MaterialDesc, MaterialKind};
+pub use medium::MediumDesc;
 pub use motion::{KeyDesc, MotionDesc, OrbitDesc, OscillateDesc, RepeatName};
 pub use object::{ObjectDesc, ObjectKind};
 pub use settings::{ImageDesc, IntegratorName, RenderDesc, WorldDesc};
@@ -50,4 +52,7 @@ pub struct SceneDesc {
     /// `[[object]]` tables.
     #[serde(default, rename = "object", skip_serializing_if = "Vec::is_empty")]
     pub objects: Vec<Spanned<ObjectDesc>>,
+    /// `[[medium]]` tables.
+    #[serde(default, rename = "medium", skip_serializing_if = "Vec::is_empty")]
+    pub media: Vec<Spanned<MediumDesc>>,
 }

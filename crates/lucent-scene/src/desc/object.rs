@@ -105,6 +105,12 @@ pub struct ObjectDesc {
     /// Every kind but planes: how it moves (see [`MotionDesc`]), after its placement.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motion: Option<Spanned<MotionDesc>>,
+    /// The `[[medium]]` inside (behind the surface's front); default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interior: Option<Spanned<String>>,
+    /// The `[[medium]]` outside (in front of the surface); default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exterior: Option<Spanned<String>>,
 }
 
 impl ObjectDesc {
@@ -129,6 +135,8 @@ impl ObjectDesc {
             rotate: None,
             scale: None,
             motion: None,
+            interior: None,
+            exterior: None,
         }
     }
 }

@@ -143,6 +143,7 @@ fn convert_scene(
         materials: Vec::new(),
         lights: Vec::new(),
         objects: Vec::new(),
+        media: Vec::new(),
     };
     let mut first_sensor: Option<&Loc> = None;
     let mut first_integrator: Option<&Loc> = None;

@@ -289,6 +289,7 @@ pub fn read<'a>(
             },
             motion: None,
             shutter,
+            medium: None,
         },
     );
     desc.image.width = Spanned::new(0..0, width);

@@ -94,8 +94,8 @@ impl PathTracer {
                         }
                         continue;
                     }
-                    Interaction::Pass { weight } => {
-                        path.beta *= spectral_mis(&mut ratio, weight, weight)
+                    Interaction::Pass { weight, ratio: r } => {
+                        path.beta *= spectral_mis(&mut ratio, weight, r)
                     }
                 }
             }

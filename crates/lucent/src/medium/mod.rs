@@ -83,10 +83,13 @@ pub enum Interaction {
         ratio: Rgb,
     },
     /// Past the segment's end: the surface there is reached.
-    /// `weight = ratio = Tr(end) / P_hero(end)`.
+    /// `weight = ratio = Tr(end) / P_hero(end)`; in a medium that only absorbs, no distance is
+    /// drawn and the segment is passed for sure: `weight = Tr(end)`, `ratio = 1`.
     Pass {
-        /// The throughput's factor, also the channels' densities over the hero's.
+        /// The throughput's factor.
         weight: Rgb,
+        /// The channels' probabilities of passing over the hero's.
+        ratio: Rgb,
     },
 }
 
@@ -122,6 +125,13 @@ impl Medium {
     /// A distance sample along a segment of length `end` (infinite for a ray that escapes),
     /// drawn from the exponential of channel `hero` (0, 1, 2) with `u` uniform in `[0, 1)`.
     pub fn sample_distance(&self, end: f32, hero: usize, u: f32) -> Interaction {
+        if self.sigma_s.is_black() {
+            // Nothing scatters: the transmittance itself, with no noise.
+            return Interaction::Pass {
+                weight: self.transmittance(end),
+                ratio: Rgb::WHITE,
+            };
+        }
         let st = self.sigma_t();
         let s_hero = st.to_array()[hero];
         let t = if s_hero > 0.0 {
@@ -148,12 +158,14 @@ impl Medium {
         }
         let tr = self.transmittance(end);
         let p_pass = tr.to_array()[hero];
+        let weight = if p_pass > 0.0 {
+            tr / p_pass
+        } else {
+            Rgb::BLACK
+        };
         Interaction::Pass {
-            weight: if p_pass > 0.0 {
-                tr / p_pass
-            } else {
-                Rgb::BLACK
-            },
+            weight,
+            ratio: weight,
         }
     }
 }

@@ -43,7 +43,7 @@ fn expected(m: &Medium, end: f32) -> (Rgb, Rgb) {
         for j in 0..n {
             let u = (j as f32 + 0.5) / n as f32;
             match m.sample_distance(end, hero, u) {
-                Interaction::Pass { weight } => add(&mut pass, weight / weight.mean()),
+                Interaction::Pass { weight, ratio } => add(&mut pass, weight / ratio.mean()),
                 Interaction::Scatter { t, weight, ratio } => {
                     assert!((0.0..end).contains(&t));
                     add(&mut scatter, weight / ratio.mean());
@@ -91,8 +91,24 @@ fn a_gray_medium_weighs_scattering_by_its_albedo_and_passing_by_one() {
         other => panic!("{other:?}"),
     }
     match m.sample_distance(0.01, 1, 0.5) {
-        Interaction::Pass { weight } => assert!((weight - Rgb::WHITE).max_channel().abs() < 1e-6),
+        Interaction::Pass { weight, .. } => {
+            assert!((weight - Rgb::WHITE).max_channel().abs() < 1e-6)
+        }
         other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_medium_that_only_absorbs_passes_with_its_transmittance() {
+    let m = Medium::new(Rgb::new(0.5, 1.0, 2.0), Rgb::BLACK, 0.0);
+    for u in [0.01, 0.5, 0.99] {
+        assert_eq!(
+            m.sample_distance(1.5, 2, u),
+            Interaction::Pass {
+                weight: m.transmittance(1.5),
+                ratio: Rgb::WHITE
+            }
+        );
     }
 }
 

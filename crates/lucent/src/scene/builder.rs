@@ -120,11 +120,11 @@ pub struct SceneBuilder {
     instances: Vec<(u32, Affine3A, ObjectTag)>,
     motions: Vec<(u32, Motion)>,
     camera_motion: Option<Motion>,
-    objects: u32,
+    pub(super) objects: u32,
     accelerator: AccelKind,
     triangle_test: TriangleTest,
     origin: glam::DVec3,
-    media: SceneMedia,
+    pub(super) media: SceneMedia,
 }
 
 impl SceneBuilder {
@@ -153,11 +153,6 @@ impl SceneBuilder {
             origin: glam::DVec3::ZERO,
             media: SceneMedia::default(),
         }
-    }
-
-    /// The participating media, to add to ([`SceneMedia`]).
-    pub fn media(&mut self) -> &mut SceneMedia {
-        &mut self.media
     }
 
     /// Where this scene's coordinates have their zero in the world the scene was described in

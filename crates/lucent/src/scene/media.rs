@@ -1,7 +1,7 @@
 //! The scene's participating media ([`crate::medium`]) and where they are: which objects
 //! bound them and which one the camera sits in.
 
-use super::Scene;
+use super::{Scene, SceneBuilder};
 use crate::medium::{Medium, MediumInterface};
 use thiserror::Error;
 
@@ -106,6 +106,18 @@ impl SceneMedia {
             named(format!("object {object}"), f.outside)?;
         }
         Ok(())
+    }
+}
+
+impl SceneBuilder {
+    /// The participating media, to add to.
+    pub fn media(&mut self) -> &mut SceneMedia {
+        &mut self.media
+    }
+
+    /// How many objects have been added (the next one's id).
+    pub fn objects(&self) -> u32 {
+        self.objects
     }
 }
 

@@ -1,0 +1,121 @@
+//! `[[medium]]` tables to the scene's media, and the names objects and the camera use.
+
+use super::Context;
+use crate::desc::{Color, MediumDesc, SceneDesc};
+use crate::error::LoadError;
+use lucent::Rgb;
+use lucent::medium::{Medium, MediumInterface, phase::MAX_G};
+use std::collections::HashMap;
+use toml::Spanned;
+
+/// The media of a scene file, by name.
+pub struct Media<'a> {
+    ids: HashMap<&'a str, u32>,
+}
+
+impl<'a> Media<'a> {
+    /// Adds every `[[medium]]` of `desc` to the scene.
+    pub fn add(desc: &'a SceneDesc, ctx: &mut Context) -> Result<Self, LoadError> {
+        let mut ids = HashMap::new();
+        for m in &desc.media {
+            let d = m.get_ref();
+            let name = d.name.get_ref().as_str();
+            if ids.contains_key(name) {
+                return Err(ctx.source.error(
+                    d.name.span(),
+                    format!("a medium named `{name}` already exists"),
+                ));
+            }
+            let medium = medium(ctx, m)?;
+            ids.insert(name, ctx.builder.media().add(medium));
+        }
+        Ok(Self { ids })
+    }
+
+    /// The medium called `name`, or an error at it listing the known ones.
+    pub fn named(&self, ctx: &Context, name: &Spanned<String>) -> Result<u32, LoadError> {
+        if let Some(&id) = self.ids.get(name.get_ref().as_str()) {
+            return Ok(id);
+        }
+        let mut known: Vec<_> = self.ids.keys().copied().collect();
+        known.sort_unstable();
+        let hint = if known.is_empty() {
+            "no [[medium]] is defined".to_string()
+        } else {
+            format!("known: {}", known.join(", "))
+        };
+        Err(ctx.source.error(
+            name.span(),
+            format!("unknown medium `{}` ({hint})", name.get_ref()),
+        ))
+    }
+
+    /// The interface of an object with `interior` and `exterior` media named, if any.
+    pub fn interface(
+        &self,
+        ctx: &Context,
+        interior: &Option<Spanned<String>>,
+        exterior: &Option<Spanned<String>>,
+    ) -> Result<MediumInterface, LoadError> {
+        let id = |n: &Option<Spanned<String>>| n.as_ref().map(|n| self.named(ctx, n)).transpose();
+        Ok(MediumInterface {
+            inside: id(interior)?,
+            outside: id(exterior)?,
+        })
+    }
+}
+
+/// The medium `m` describes, its keys checked.
+fn medium(ctx: &Context, m: &Spanned<MediumDesc>) -> Result<Medium, LoadError> {
+    let d = m.get_ref();
+    let err = |span: std::ops::Range<usize>, why: &str| ctx.source.error(span, why.to_string());
+    let value = |c: &Option<Spanned<Color>>| c.as_ref().map(|c| c.get_ref().0);
+    let scale = match &d.scale {
+        Some(s) if !(s.get_ref().0 >= 0.0) => {
+            return Err(err(s.span(), "`scale` must be at least 0"));
+        }
+        Some(s) => s.get_ref().0,
+        None => 1.0,
+    };
+    let g = match &d.g {
+        Some(g) if g.get_ref().0.abs() > MAX_G => {
+            return Err(err(
+                g.span(),
+                "`g` must lie strictly between −1 and 1 (at ±1 the phase function is a delta; 0.999 at most)",
+            ));
+        }
+        Some(g) => g.get_ref().0,
+        None => 0.0,
+    };
+    let by_albedo = d.sigma_t.is_some() || d.albedo.is_some();
+    let by_parts = d.sigma_a.is_some() || d.sigma_s.is_some();
+    if by_albedo && by_parts {
+        return Err(err(
+            m.span(),
+            "give `sigma_a` and `sigma_s`, or `sigma_t` and `albedo`, not keys of both",
+        ));
+    }
+    if let Some(a) = &d.albedo
+        && a.get_ref().0.max_channel() > 1.0
+    {
+        return Err(err(a.span(), "`albedo` must be at most 1 in every channel"));
+    }
+    let medium = if by_albedo {
+        let Some(sigma_t) = value(&d.sigma_t) else {
+            return Err(err(m.span(), "`albedo` needs `sigma_t`, the extinction"));
+        };
+        let albedo = value(&d.albedo).unwrap_or(Rgb::gray(0.8));
+        Medium::from_albedo(sigma_t * scale, albedo, g)
+    } else {
+        let zero = Rgb::BLACK;
+        Medium::new(
+            value(&d.sigma_a).unwrap_or(zero) * scale,
+            value(&d.sigma_s).unwrap_or(zero) * scale,
+            g,
+        )
+    };
+    if !medium.sigma_t().is_finite() {
+        return Err(err(m.span(), "the coefficients times `scale` overflow"));
+    }
+    Ok(medium)
+}
