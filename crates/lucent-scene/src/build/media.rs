@@ -71,7 +71,7 @@ fn medium(ctx: &Context, m: &Spanned<MediumDesc>) -> Result<Medium, LoadError> {
     let err = |span: std::ops::Range<usize>, why: &str| ctx.source.error(span, why.to_string());
     let value = |c: &Option<Spanned<Color>>| c.as_ref().map(|c| c.get_ref().0);
     let scale = match &d.scale {
-        Some(s) if !(s.get_ref().0 >= 0.0) => {
+        Some(s) if s.get_ref().0 < 0.0 => {
             return Err(err(s.span(), "`scale` must be at least 0"));
         }
         Some(s) => s.get_ref().0,
