@@ -13,7 +13,13 @@
 //! every block and for the whole image (the issue's figure); at 256 samples per pixel (1024 for
 //! rough glass) lucent's noise makes up under half of it, and the figures of every case
 //! are in `docs/materials.md`. A mismatched distribution (GGX for Beckmann) fails
-//! it, as the last test shows.
+//! it, as a test shows.
+//!
+//! The participating media (`medium-*`, rendered by Mitsuba's `volpath`) are noisier: at 512
+//! samples lucent's blocks spread by up to ~8% (the fog) while its whole image is within a few
+//! tenths of a percent; they are held to 10% per block and 1% for the whole image at 512
+//! samples, and at 4,096 samples came within 2.4% and 0.6% per block (`docs/media.md`). A
+//! medium with the wrong albedo fails that, as the last test shows.
 
 use lucent::render::{Hooks, RenderSettings, render};
 use lucent_scene::{LoadOptions, SceneFile, Spanned};
@@ -23,7 +29,9 @@ use std::path::{Path, PathBuf};
 /// transmissive principled cases, whose light refracted from the small sun is the noisiest to
 /// find, and for the Cornell box, lit only by its small ceiling light.
 fn spp(name: &str) -> u32 {
-    if name.starts_with("roughdielectric")
+    if is_medium(name) {
+        512
+    } else if name.starts_with("roughdielectric")
         || name == "principled-transmissive"
         || name == "principledthin"
         || name == "cbox-spectral"
@@ -35,6 +43,12 @@ fn spp(name: &str) -> u32 {
 }
 /// The tolerance on every block and on the whole image.
 const TOLERANCE: f64 = 0.02;
+/// The media cases' tolerances: every block, the whole image.
+const MEDIA_TOLERANCE: (f64, f64) = (0.10, 0.01);
+
+fn is_medium(name: &str) -> bool {
+    name.starts_with("medium-")
+}
 const BLOCK: usize = 8;
 
 fn suite() -> PathBuf {
@@ -67,8 +81,11 @@ fn reference(name: &str) -> (usize, usize, Vec<[f32; 3]>) {
 fn render_text(name: &str, text: &str) -> (usize, usize, Vec<[f32; 3]>) {
     let textures = suite().join("textures");
     let text = text.replace("../textures/", &format!("{}/", textures.display()));
+    // Tests run in parallel, and two may render the same case: a file of each render's own.
+    static RENDERS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = RENDERS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let path = std::env::temp_dir().join(format!(
-        "lucent-conformance-{name}-{}.xml",
+        "lucent-conformance-{name}-{}-{n}.xml",
         std::process::id()
     ));
     std::fs::write(&path, text).unwrap();
@@ -129,19 +146,17 @@ fn errors(img: &[[f32; 3]], reference: &[[f32; 3]], w: usize, h: usize) -> (f64,
     (worst, whole)
 }
 
-#[test]
-fn every_case_agrees_with_mitsuba_within_two_percent() {
-    let names = cases();
-    assert!(names.len() >= 30, "only {} cases", names.len());
+/// Renders every case of `names`, and the failures against `(block, whole)` tolerances.
+fn failures(names: &[String], (block, whole_image): (f64, f64)) -> Vec<String> {
     let mut failures = Vec::new();
     println!("{:40} {:>10} {:>10}", "case", "worst 8x8", "whole");
-    for name in &names {
+    for name in names {
         let (w, h, reference) = reference(name);
         let (iw, ih, img) = render_case(name);
         assert_eq!((iw, ih), (w, h), "{name}");
         let (worst, whole) = errors(&img, &reference, w, h);
         println!("{name:40} {:9.2}% {:9.2}%", 100.0 * worst, 100.0 * whole);
-        if worst > TOLERANCE || whole > TOLERANCE {
+        if worst > block || whole > whole_image {
             failures.push(format!(
                 "{name}: worst block {:.2}%, whole image {:.2}%",
                 100.0 * worst,
@@ -149,7 +164,46 @@ fn every_case_agrees_with_mitsuba_within_two_percent() {
             ));
         }
     }
+    failures
+}
+
+#[test]
+fn every_case_agrees_with_mitsuba_within_two_percent() {
+    let names: Vec<_> = cases().into_iter().filter(|n| !is_medium(n)).collect();
+    assert!(names.len() >= 30, "only {} cases", names.len());
+    let failures = failures(&names, (TOLERANCE, TOLERANCE));
     assert!(failures.is_empty(), "over 2%:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn media_agree_with_mitsubas_volpath() {
+    let names: Vec<_> = cases().into_iter().filter(|n| is_medium(n)).collect();
+    assert!(names.len() >= 2, "only {} media cases", names.len());
+    let failures = failures(&names, MEDIA_TOLERANCE);
+    assert!(
+        failures.is_empty(),
+        "over the tolerance:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// The media cases can fail: the fog with a tenth more albedo (0.935, 0.88, 0.77 for 0.85,
+/// 0.8, 0.7) is outside their tolerance.
+#[test]
+fn a_wrong_albedo_fails_the_media_metric() {
+    let name = "medium-cbox-fog";
+    let text = std::fs::read_to_string(suite().join("scenes").join(format!("{name}.xml"))).unwrap();
+    let right = r#"<rgb name="albedo" value="0.85, 0.8, 0.7"/>"#;
+    assert!(text.contains(right));
+    let wrong = r#"<rgb name="albedo" value="0.935, 0.88, 0.77"/>"#;
+    let (w, h, reference) = reference(name);
+    let (_, _, img) = render_text(name, &text.replace(right, wrong));
+    let (worst, whole) = errors(&img, &reference, w, h);
+    println!("wrong albedo: worst block {worst}, whole image {whole}");
+    assert!(
+        worst > MEDIA_TOLERANCE.0 || whole > 3.0 * MEDIA_TOLERANCE.1,
+        "a wrong albedo passed: worst block {worst}, whole image {whole}"
+    );
 }
 
 /// The suite can fail: Mitsuba's Beckmann ball rendered with GGX facets of the same roughness

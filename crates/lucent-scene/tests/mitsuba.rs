@@ -9,6 +9,8 @@ mod cbox;
 mod errors;
 #[path = "mitsuba/hostile.rs"]
 mod hostile;
+#[path = "mitsuba/media.rs"]
+mod media;
 #[path = "mitsuba/placement.rs"]
 mod placement;
 #[path = "mitsuba/plugins.rs"]

@@ -52,6 +52,7 @@ pub const TYPES: &[&str] = &[
     "normalmap",
     "principled",
     "principledthin",
+    "null",
 ];
 
 /// Deepest nesting of BSDFs (`twosided` in `twosided` …), against reference cycles.
@@ -222,6 +223,7 @@ pub fn describe<'a>(
     let kind = |k| Some(spanned(k));
     let mut silent: &[&str] = &[];
     match p.kind {
+        "null" => m.kind = kind(MaterialKind::Null),
         "diffuse" => {
             m.kind = kind(MaterialKind::Diffuse);
             m.reflectance = Some(param_or(cx, &p, "reflectance", 0.5)?);

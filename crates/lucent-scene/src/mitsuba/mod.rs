@@ -30,7 +30,9 @@
 //! 2. every plugin's type is checked and every `id` indexed, so that an unknown type is an
 //!    error wherever it stands, even inside something lucent would otherwise skip;
 //! 3. the scene's children are read in document order: [`sensor`] (camera, film, sampler)
-//!    and the integrator, [`shape`]s (with their [`bsdf`]s as materials), [`emitter`]s.
+//!    and the integrator, [`shape`]s (with their [`bsdf`]s as materials and their media),
+//!    [`emitter`]s; a `<medium>` is read where a shape or the sensor first names it
+//!    (`medium.rs`).
 //!
 //! Conventions: file names start from the main XML file's folder (`<include>`s too, as with
 //! Mitsuba's file resolver) and are kept as written, so the description's relative names start
@@ -43,7 +45,7 @@
 //! The description itself carries no positions (its spans are empty): one description may come
 //! from several files.
 //!
-//! Not read: participating media, textures other than `bitmap`, `checkerboard` and
+//! Not read: heterogeneous media and grids, textures other than `bitmap`, `checkerboard` and
 //! `mesh_attribute`, spectra from files, sensors other than `perspective`, `thinlens` and
 //! `orthographic`, BSDFs, shapes and emitters beyond those listed in each module, `<alias>`, and
 //! Mitsuba 0.x files (version < 2, whose parameter names differ). `<path>` folders are searched
@@ -52,6 +54,7 @@
 pub mod bsdf;
 pub mod emitter;
 pub mod ior;
+mod medium;
 mod numbers;
 pub mod props;
 pub mod sensor;
@@ -118,6 +121,7 @@ fn convert_scene(
         environment: None,
         search: Vec::new(),
         used_area_emitters: Vec::new(),
+        media: medium::Media::default(),
     };
     // `<path>` folders, where relative file names are also looked for: gathered first, so that
     // they hold for the whole file.
@@ -181,7 +185,7 @@ fn convert_scene(
                 desc.lights.push(Spanned::new(0..0, light));
             }
             "path" => {} // read above
-            "bsdf" | "texture" => declared.push(el),
+            "bsdf" | "texture" | "medium" => declared.push(el),
             "film" | "sampler" => {
                 return Err(el
                     .loc
@@ -215,6 +219,8 @@ fn convert_scene(
             )));
         } else if cx.materials.seen(el) {
             // Checked where it was used.
+        } else if el.tag == "medium" {
+            medium::named(&mut cx, el)?;
         } else if el.tag == "bsdf" {
             bsdf::describe(&mut cx, el, 0)?;
         } else {
@@ -232,6 +238,10 @@ fn convert_scene(
     // would repeat its warnings word for word.
     let mut said = std::collections::HashSet::new();
     cx.warnings.retain(|w| said.insert(w.clone()));
+    desc.media = std::mem::take(&mut cx.media.list)
+        .into_iter()
+        .map(|m| Spanned::new(0..0, m))
+        .collect();
     desc.materials = cx
         .materials
         .list
@@ -264,6 +274,8 @@ pub struct Convert<'a> {
     pub search: Vec<String>,
     /// The area emitters shapes have taken, declared at the top of the scene or not.
     pub used_area_emitters: Vec<*const Element>,
+    /// The media read so far.
+    pub media: medium::Media,
 }
 
 impl<'a> Convert<'a> {
@@ -315,6 +327,8 @@ fn known_types(tag: &str) -> Option<&'static [&'static str]> {
         "rfilter" => sensor::FILTERS,
         "integrator" => sensor::INTEGRATORS,
         "texture" => texture::TYPES,
+        "medium" => medium::TYPES,
+        "phase" => medium::PHASES,
         _ => return None,
     })
 }
@@ -335,7 +349,7 @@ fn index<'a>(el: &'a Element, ids: &mut Ids<'a>) -> Result<(), LoadError> {
         if PLUGIN_TAGS.contains(&c.tag.as_str()) {
             let Some(known) = known_types(&c.tag) else {
                 return Err(c.loc.error(format!(
-                    "<{}> is not read by lucent (it renders no participating media)",
+                    "<{}> is not read by lucent (it renders homogeneous media only)",
                     c.tag
                 )));
             };

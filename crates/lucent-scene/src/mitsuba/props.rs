@@ -326,9 +326,10 @@ impl<'a> Plugin<'a> {
     /// other such colour lucent reads is bounded. (The BSDF reader could say so at its call,
     /// as the emitters do; until it does, this keeps the rule in one place.)
     fn role(&self, name: &str) -> Role {
-        let unbounded = self.el.tag == "bsdf"
+        let unbounded = (self.el.tag == "bsdf"
             && matches!(self.kind, "conductor" | "roughconductor")
-            && matches!(name, "eta" | "k");
+            && matches!(name, "eta" | "k"))
+            || (self.el.tag == "medium" && name == "sigma_t");
         if unbounded {
             Role::Unbounded
         } else {

@@ -52,7 +52,7 @@ pub const FILTERS: &[&str] = &[
     "lanczos",
 ];
 /// The integrator types lucent reads.
-pub const INTEGRATORS: &[&str] = &["path", "direct"];
+pub const INTEGRATORS: &[&str] = &["path", "direct", "volpath", "volpathmis"];
 
 /// Mitsuba's defaults: film 768 × 576, 4 samples per pixel.
 pub const DEFAULT_FILM: (u32, u32) = (768, 576);
@@ -181,6 +181,16 @@ pub fn read<'a>(
             ],
         );
     }
+    let media = p.take("medium");
+    if let Some(extra) = media.get(1) {
+        return Err(extra
+            .at
+            .error("a sensor sits in one medium; this is a second"));
+    }
+    let camera_medium = match media.first() {
+        Some(m) => Some(Spanned::new(0..0, super::medium::named(cx, m.el)?)),
+        None => None,
+    };
     let mut samples = DEFAULT_SAMPLES;
     let samplers = p.take("sampler");
     if let Some(extra) = samplers.get(1) {
@@ -289,7 +299,7 @@ pub fn read<'a>(
             },
             motion: None,
             shutter,
-            medium: None,
+            medium: camera_medium,
         },
     );
     desc.image.width = Spanned::new(0..0, width);

@@ -9,6 +9,9 @@
 //!
 //! A sphere's `flip_normals` is not read (lucent's spheres face out), with a warning.
 //!
+//! Its `<medium name="interior">` and `name="exterior"` are the object's media (see
+//! `medium.rs`).
+//!
 //! A shape's nested or referenced `<bsdf>` is its material (none: Mitsuba's default, diffuse
 //! 0.5); a nested `<emitter type="area">` makes a copy of that material emitting its
 //! `radiance`.
@@ -159,6 +162,18 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
         material = bsdf::emissive(cx, &material, radiance, e.at);
     }
     o.material = Spanned::new(0..0, material);
+    for m in p.take("medium") {
+        let name = Some(Spanned::new(0..0, super::medium::named(cx, m.el)?));
+        match m.name {
+            Some("interior") => o.interior = name,
+            Some("exterior") => o.exterior = name,
+            _ => {
+                return Err(m.at.error(
+                    "a shape's medium is named \"interior\" or \"exterior\" (name=\"interior\")",
+                ));
+            }
+        }
+    }
     p.finish(&mut cx.warnings, &[]);
     Ok(o)
 }

@@ -1,0 +1,115 @@
+//! `<medium>`, `<phase>`, the `null` BSDF and `volpath`: read as `[[medium]]` tables, objects'
+//! `interior`/`exterior` and the camera's medium; what lucent cannot read refused at its place.
+
+use super::support::*;
+use lucent::Rgb;
+use lucent_scene::desc::{IntegratorName, MaterialKind, MediumDesc};
+
+fn medium<'a>(imported: &'a lucent_scene::Imported, name: &str) -> &'a MediumDesc {
+    imported
+        .desc
+        .media
+        .iter()
+        .map(|m| m.get_ref())
+        .find(|m| m.name.get_ref() == name)
+        .unwrap_or_else(|| panic!("no medium `{name}`"))
+}
+
+fn color(c: &Option<lucent_scene::Spanned<lucent_scene::desc::Color>>) -> Option<Rgb> {
+    c.as_ref().map(|c| c.get_ref().0)
+}
+
+#[test]
+fn media_are_read_where_shapes_and_the_sensor_name_them() {
+    let dir = Dir::new("media");
+    let text = scene(
+        r#"    <integrator type="volpath"><integer name="max_depth" value="10"/></integrator>
+    <medium type="homogeneous" id="fog">
+        <float name="sigma_t" value="0.5"/>
+        <phase type="isotropic"/>
+    </medium>
+    <sensor type="perspective"><ref id="fog"/></sensor>
+    <shape type="sphere">
+        <bsdf type="null"/>
+        <medium type="homogeneous" name="interior">
+            <rgb name="sigma_t" value="0.2, 0.4, 1"/>
+            <float name="scale" value="3"/>
+            <rgb name="albedo" value="0.9, 0.5, 0.1"/>
+            <phase type="hg"/>
+        </medium>
+        <ref name="exterior" id="fog"/>
+    </shape>"#,
+    );
+    let path = dir.write("media.xml", &text);
+    let imported = import(&path);
+    assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    let d = &imported.desc;
+    assert_eq!(d.render.integrator, IntegratorName::Path);
+    assert_eq!(*d.render.max_depth.get_ref(), 8);
+    assert_eq!(d.media.len(), 2, "the fog is read once, though named twice");
+    assert_eq!(d.camera.get_ref().medium.as_ref().unwrap().get_ref(), "fog");
+    let fog = medium(&imported, "fog");
+    // Mitsuba's defaults: albedo 0.75, scale 1; an isotropic phase function.
+    assert_eq!(color(&fog.sigma_t), Some(Rgb::gray(0.5)));
+    assert_eq!(color(&fog.albedo), Some(Rgb::gray(0.75)));
+    assert_eq!(fog.g.as_ref().map(|g| g.get_ref().0), Some(0.0));
+    let o = objects(&imported)[0];
+    assert_eq!(o.exterior.as_ref().unwrap().get_ref(), "fog");
+    let inside = medium(&imported, o.interior.as_ref().unwrap().get_ref());
+    assert_eq!(color(&inside.sigma_t), Some(Rgb::new(0.2, 0.4, 1.0)));
+    assert_eq!(inside.scale.as_ref().map(|s| s.get_ref().0), Some(3.0));
+    assert_eq!(color(&inside.albedo), Some(Rgb::new(0.9, 0.5, 0.1)));
+    // Mitsuba's hg: g = 0.8 unless given.
+    assert_eq!(inside.g.as_ref().map(|g| g.get_ref().0), Some(0.8));
+    assert_eq!(
+        material(&imported, o.material.get_ref()).kind(),
+        MaterialKind::Null
+    );
+    // And it builds: the camera is in the fog, the sphere bounds a medium.
+    let (_, loaded) = load(&path);
+    assert!(loaded.scene.has_media());
+    assert_eq!(loaded.scene.camera_medium(), Some(0));
+}
+
+#[test]
+fn media_lucent_cannot_read_are_refused_at_their_place() {
+    let dir = Dir::new("media-refused");
+    let cases = [
+        (
+            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"/></shape>"#,
+            "<medium",
+            "unknown medium type `heterogeneous` (lucent reads: homogeneous)",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="homogeneous"/></shape>"#,
+            "<medium",
+            "named \"interior\" or \"exterior\"",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="homogeneous" name="interior"><rgb name="albedo" value="0.5, 1.2, 0.5"/></medium></shape>"#,
+            "<medium",
+            "albedo must be at most 1",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="homogeneous" name="interior"><phase type="hg"><float name="g" value="1"/></phase></medium></shape>"#,
+            "<phase",
+            "strictly between −1 and 1",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="homogeneous" name="interior"><phase type="rayleigh"/></medium></shape>"#,
+            "<phase",
+            "unknown phase type `rayleigh`",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="homogeneous" name="interior"><volume type="gridvolume" name="albedo"/></medium></shape>"#,
+            "<volume",
+            "<volume> is not read by lucent",
+        ),
+    ];
+    for (i, (body, at, words)) in cases.into_iter().enumerate() {
+        let text = scene(body);
+        let path = dir.write(&format!("bad-{i}.xml"), &text);
+        let e = import_error(&path, &open());
+        assert_error(&e, &path, position(&text, at), words);
+    }
+}
