@@ -54,7 +54,7 @@ pub fn named<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<String, LoadEr
     }
     m.albedo = color(albedo);
     let scale = p.float_or("scale", 1.0)?;
-    if !(scale >= 0.0 && (scale as f32).is_finite()) {
+    if scale.is_nan() || scale < 0.0 || !(scale as f32).is_finite() {
         return Err(el
             .loc
             .error(format!("`scale` must be at least 0, got {scale}")));
@@ -73,7 +73,7 @@ pub fn named<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<String, LoadEr
             "hg" => ph.float_or("g", 0.8)?,
             other => return Err(super::unknown_type(phase.el, other)),
         };
-        if !(g.abs() < 1.0) {
+        if g.is_nan() || g.abs() >= 1.0 {
             return Err(phase.el.loc.error(format!(
                 "the hg phase function's g lies strictly between −1 and 1, not {g}"
             )));
