@@ -285,6 +285,34 @@ fn lit(
 /// not stop it; 0 when one does.
 fn transmittance(
     scene: &Scene,
+    ray: Ray,
+    from: Option<Leaving>,
+    t_max: f32,
+    medium: Option<u32>,
+    stats: &mut RayStats,
+) -> Rgb {
+    // First the cheap any-hit query, which stops at the first surface that surely blocks; only
+    // a ray that meets surfaces it may cross (null boundaries, cut-outs) walks them in order.
+    let mut crosses = false;
+    let blocked = scene.occlusion(&ray, t_max, from, &mut stats.traversal, |m, _| {
+        let m = &scene.materials[m as usize];
+        let may_cross = m.opacity.is_some() || m.cull_back;
+        crosses |= may_cross;
+        !may_cross
+    });
+    if blocked {
+        return Rgb::BLACK;
+    }
+    match (crosses, medium) {
+        (false, None) => Rgb::WHITE,
+        (false, Some(m)) => scene.medium(m).transmittance(t_max),
+        (true, _) => transmittance_across(scene, ray, from, t_max, medium, stats),
+    }
+}
+
+/// [`transmittance`] by walking every surface along the ray, nearest first.
+fn transmittance_across(
+    scene: &Scene,
     mut ray: Ray,
     mut from: Option<Leaving>,
     t_max: f32,
