@@ -56,6 +56,7 @@ mod material;
 mod primitive;
 mod skin;
 mod source;
+mod volume;
 
 use crate::desc::{
     CameraDesc, FalloffName, Finite, IntegratorName, LightDesc, LightKind, Matrix, ObjectDesc,
@@ -304,14 +305,19 @@ pub fn import_gltf(
         options,
     };
     let mut materials = Vec::new();
+    let mut media = Vec::new();
     for m in doc.materials() {
         let Some(k) = m.index().filter(|&k| used[k]) else {
             continue;
         };
         let (d, notes) = material::describe(&m, &names[k], &images).map_err(|e| asset.error(e))?;
         notes.into_iter().for_each(&mut warn);
+        if let Some(medium) = volume::medium(&m, &names[k]) {
+            media.push((names[k].clone(), medium));
+        }
         materials.push(Spanned::new(0..0, d));
     }
+    volume::fill(&mut objects, &media);
     if default_used {
         materials.push(Spanned::new(
             0..0,
@@ -327,7 +333,10 @@ pub fn import_gltf(
         materials,
         lights,
         objects,
-        media: Vec::new(),
+        media: media
+            .into_iter()
+            .map(|(_, m)| Spanned::new(0..0, m))
+            .collect(),
     };
     // glTF's materials are physically based: the path tracer renders them as written, at
     // enough samples for a first look (`--spp`, `--time-limit` choose otherwise).

@@ -653,3 +653,7 @@ mod refused;
 // Shared geometry, quantized attributes, morph targets, skins and Draco.
 #[path = "gltf/geometry.rs"]
 mod geometry;
+
+// KHR_materials_volume's attenuation as a medium.
+#[path = "gltf/volume.rs"]
+mod volume;

@@ -9,7 +9,7 @@
 //! | `emissiveFactor` × `emissiveTexture` × `KHR_materials_emissive_strength` | `emission` |
 //! | `alphaMode` `MASK` (`alphaCutoff`) / `BLEND`: base colour alpha × texture alpha | `opacity`: a `step` at the cutoff / the alpha itself |
 //! | `doubleSided` | `two_sided` |
-//! | `KHR_materials_ior`, `_specular`, `_transmission`, `_volume` (a thickness: refracting) | `ior`, `specular`, `specular_color`, `transmission`, `volume` |
+//! | `KHR_materials_ior`, `_specular`, `_transmission`, `_volume` (a thickness: refracting; an attenuation: an absorbing medium inside, `volume.rs`) | `ior`, `specular`, `specular_color`, `transmission`, `volume`; the objects' `interior` |
 //! | `KHR_materials_clearcoat`, `_sheen`, `_anisotropy` | `clearcoat`, `clearcoat_roughness`, `clearcoat_normal_map`; `sheen_color`, `sheen_roughness`; `anisotropy`, `anisotropy_rotation`, `anisotropy_direction` |
 //! | `KHR_materials_diffuse_transmission`: factor × alpha, colour × texture | `diffuse_transmission`, `diffuse_transmission_color` |
 //! | `KHR_materials_unlit` | `diffuse` black with `emission` = base colour × vertex colour (`emits_back` when double-sided) |
@@ -22,8 +22,7 @@
 //! A primitive keeps the coordinate set most of its material's textures read ([`uv_set`]).
 //!
 //! Not read (each a note naming the material): a texture reading another coordinate set,
-//! `KHR_materials_volume`'s attenuation, `KHR_materials_dispersion`, specular-glossiness
-//! materials.
+//! `KHR_materials_dispersion`, specular-glossiness materials.
 //! `occlusionTexture` is a rasteriser's stand-in for the shadowing a path tracer computes, and
 //! is left out on purpose.
 
@@ -567,13 +566,10 @@ fn extensions(r: &mut Reader, m: &gltf::Material, d: &mut MaterialDesc) -> Resul
         )?;
         d.transmission = unless_default(tr, 0.0);
     }
-    if let Some(v) = m.volume() {
-        if v.thickness_factor() > 0.0 {
-            d.volume = Some(true);
-        }
-        if v.attenuation_distance().is_finite() && v.attenuation_color() != [1.0; 3] {
-            r.note("KHR_materials_volume's attenuation is not rendered: the volume is clear");
-        }
+    if let Some(v) = m.volume()
+        && v.thickness_factor() > 0.0
+    {
+        d.volume = Some(true);
     }
     if let Some(c) = m.extension_value("KHR_materials_clearcoat") {
         d.clearcoat = r.unit_factor(c, "clearcoatFactor", "clearcoatTexture", Channel::R)?;
