@@ -4,7 +4,6 @@
 use lucent::render::{Hooks, render};
 use lucent_scene::{LoadError, Loaded, SceneFile};
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 
 /// A 1-pixel camera looking through the centre of a unit sphere, on a white background.
 const VIEW: &str = "[image]\nwidth = 1\nheight = 1\nsamples = 4096\n\
@@ -26,13 +25,7 @@ fn load(text: &str) -> Result<Loaded, LoadError> {
 
 fn pixel(text: &str) -> [f32; 3] {
     let loaded = load(text).unwrap();
-    let cancel = AtomicBool::new(false);
-    let hooks = Hooks {
-        cancel: &cancel,
-        progress: &|_, _| {},
-        checkpoint: None,
-    };
-    let film = render(&loaded.scene, &loaded.settings, None, &hooks)
+    let film = render(&loaded.scene, &loaded.settings, None, &Hooks::none())
         .unwrap()
         .film;
     film.pixel(0, 0).to_array()

@@ -135,31 +135,11 @@ impl PathTracer {
             _ => scene.intersect_opaque(ray, path.from, &mut stats.traversal),
         };
         let Some(hit) = hit else {
-            let le = scene.background_along(ray.dir);
-            if !le.is_black() {
-                let w = path.last.map_or(1.0, |(_, pdf)| {
-                    power_heuristic(pdf, scene.emitters.pdf_environment(ray.dir))
-                });
-                path.l += path.beta * le * w;
-            }
+            path.escape(scene);
             return false;
         };
         let footprint = footprint_of_sample(sampler.index());
-        let m = &scene.materials[hit.material as usize];
-        if m.emits_towards(hit.normal, ray.dir) {
-            let w = match (path.last, scene.emitters.area_light_of(hit.object)) {
-                (Some((p, pdf)), Some(light)) => power_heuristic(
-                    pdf,
-                    scene.emitters.pdf_area(light, p, hit.point, hit.normal),
-                ),
-                _ => 1.0,
-            };
-            let le = match m.emission_map {
-                None => m.ke,
-                Some(_) => m.emission(&scene.tex_coords(m, &hit, footprint), &scene.images),
-            };
-            path.l += path.beta * le * w;
-        }
+        path.meet(scene, &hit, footprint);
 
         // The last bounce's ray was traced only for the light it finds (so that both
         // techniques of the last vertex count, as MIS assumes).
@@ -266,6 +246,43 @@ impl Path {
             last: None,
             depth: 0,
         }
+    }
+
+    /// Adds the environment's light, seen by the ray that escaped the scene, weighed against
+    /// the light sample of the vertex before.
+    #[inline(always)]
+    pub fn escape(&mut self, scene: &Scene) {
+        let dir = self.ray.dir;
+        let le = scene.background_along(dir);
+        if !le.is_black() {
+            let w = self.last.map_or(1.0, |(_, pdf)| {
+                power_heuristic(pdf, scene.emitters.pdf_environment(dir))
+            });
+            self.l += self.beta * le * w;
+        }
+    }
+
+    /// Adds the light of the surface the ray hit at `hit`, if it emits towards the ray,
+    /// weighed against the light sample of the vertex before; its textures filtered over
+    /// `footprint`.
+    #[inline(always)]
+    pub fn meet(&mut self, scene: &Scene, hit: &SurfaceHit, footprint: f32) {
+        let m = &scene.materials[hit.material as usize];
+        if !m.emits_towards(hit.normal, self.ray.dir) {
+            return;
+        }
+        let w = match (self.last, scene.emitters.area_light_of(hit.object)) {
+            (Some((p, pdf)), Some(light)) => power_heuristic(
+                pdf,
+                scene.emitters.pdf_area(light, p, hit.point, hit.normal),
+            ),
+            _ => 1.0,
+        };
+        let le = match m.emission_map {
+            None => m.ke,
+            Some(_) => m.emission(&scene.tex_coords(m, hit, footprint), &scene.images),
+        };
+        self.l += self.beta * le * w;
     }
 }
 

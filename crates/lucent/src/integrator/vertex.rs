@@ -143,11 +143,7 @@ pub fn light_through(
     if f.is_black() {
         return Rgb::BLACK;
     }
-    let le = if s.distance.is_infinite() && !s.delta {
-        scene.background_along(s.wi)
-    } else {
-        s.radiance
-    };
+    let le = light_sampled(scene, s);
     if le.is_black() {
         return Rgb::BLACK;
     }
@@ -156,21 +152,42 @@ pub fn light_through(
     if !traceable(&ray, stats) {
         return Rgb::BLACK;
     }
-    // Stop short of the light's own surface.
-    let t_max = if s.distance.is_finite() {
+    if scene.blocked(&ray, shadow_reach(s), Some(from), &mut stats.traversal) {
+        return Rgb::BLACK;
+    }
+    f * le * (light_weight(s, bsdf_pdf, mis) / s.pdf)
+}
+
+/// The radiance the light sample `s` sends: its own, or for a sample of the environment, the
+/// environment's along it.
+#[inline]
+pub fn light_sampled(scene: &Scene, s: &EmitterSample) -> Rgb {
+    if s.distance.is_infinite() && !s.delta {
+        scene.background_along(s.wi)
+    } else {
+        s.radiance
+    }
+}
+
+/// How far a shadow ray towards the light sample `s` goes: short of the light's own surface.
+#[inline]
+pub fn shadow_reach(s: &EmitterSample) -> f32 {
+    if s.distance.is_finite() {
         s.distance * (1.0 - 1e-4)
     } else {
         f32::INFINITY
-    };
-    if scene.blocked(&ray, t_max, Some(from), &mut stats.traversal) {
-        return Rgb::BLACK;
     }
-    let w = if s.delta || !mis {
+}
+
+/// The light sample `s`'s weight against the scattering's own sample of density `pdf`: the
+/// power heuristic when `mis`, 1 for delta lights or without.
+#[inline]
+pub fn light_weight(s: &EmitterSample, pdf: f32, mis: bool) -> f32 {
+    if s.delta || !mis {
         1.0
     } else {
-        power_heuristic(s.pdf, bsdf_pdf)
-    };
-    f * le * (w / s.pdf)
+        power_heuristic(s.pdf, pdf)
+    }
 }
 
 /// The ray leaving `hit` along the scattered sample `s` (counted as reflected or refracted in

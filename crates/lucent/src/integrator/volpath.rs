@@ -15,14 +15,13 @@
 //! scene without media never comes here: its paths are [`PathTracer::radiance`]'s, bit for bit.
 
 use super::path::Path;
-use super::vertex::{Vertex, footprint_of_sample};
+use super::vertex::{Vertex, footprint_of_sample, light_sampled, light_weight, shadow_reach};
 use super::{RayStats, traceable, unless_untraceable};
 use crate::Rgb;
 use crate::bsdf::Transport;
 use crate::integrator::PathTracer;
 use crate::light::EmitterSample;
 use crate::medium::Interaction;
-use crate::sampling::mis::power_heuristic;
 use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
@@ -100,13 +99,7 @@ impl PathTracer {
                 }
             }
             let Some(hit) = hit else {
-                let le = scene.background_along(ray.dir);
-                if !le.is_black() {
-                    let w = path.last.map_or(1.0, |(_, pdf)| {
-                        power_heuristic(pdf, scene.emitters.pdf_environment(ray.dir))
-                    });
-                    path.l += path.beta * le * w;
-                }
+                path.escape(scene);
                 break;
             };
             if !scene.stops(&hit, &ray) {
@@ -124,7 +117,7 @@ impl PathTracer {
                 continue;
             }
             let footprint = footprint_of_sample(sampler.index());
-            self.emission_met(scene, &mut path, &hit, footprint);
+            path.meet(scene, &hit, footprint);
             if path.depth > self.max_depth {
                 break;
             }
@@ -152,27 +145,6 @@ impl PathTracer {
             }
         }
         unless_untraceable(path.l, stats, untraceable)
-    }
-
-    /// The light of an emitting surface the path meets at `hit`, weighed against the light
-    /// sample of the vertex before (as [`PathTracer::arrive`] does).
-    fn emission_met(&self, scene: &Scene, path: &mut Path, hit: &SurfaceHit, footprint: f32) {
-        let m = &scene.materials[hit.material as usize];
-        if !m.emits_towards(hit.normal, path.ray.dir) {
-            return;
-        }
-        let w = match (path.last, scene.emitters.area_light_of(hit.object)) {
-            (Some((p, pdf)), Some(light)) => power_heuristic(
-                pdf,
-                scene.emitters.pdf_area(light, p, hit.point, hit.normal),
-            ),
-            _ => 1.0,
-        };
-        let le = match m.emission_map {
-            None => m.ke,
-            Some(_) => m.emission(&scene.tex_coords(m, hit, footprint), &scene.images),
-        };
-        path.l += path.beta * le * w;
     }
 
     /// A scattering event in medium `m` at `at`: direct light by a light sample, and the next
@@ -243,11 +215,7 @@ fn lit(
     if f.is_black() {
         return Rgb::BLACK;
     }
-    let le = if s.distance.is_infinite() && !s.delta {
-        scene.background_along(s.wi)
-    } else {
-        s.radiance
-    };
+    let le = light_sampled(scene, s);
     if le.is_black() {
         return Rgb::BLACK;
     }
@@ -262,22 +230,11 @@ fn lit(
     if !traceable(&ray, stats) {
         return Rgb::BLACK;
     }
-    // Stop short of the light's own surface.
-    let t_max = if s.distance.is_finite() {
-        s.distance * (1.0 - 1e-4)
-    } else {
-        f32::INFINITY
-    };
-    let tr = transmittance(scene, ray, leaving, t_max, start, stats);
+    let tr = transmittance(scene, ray, leaving, shadow_reach(s), start, stats);
     if tr.is_black() {
         return Rgb::BLACK;
     }
-    let w = if s.delta {
-        1.0
-    } else {
-        power_heuristic(s.pdf, pdf)
-    };
-    f * le * tr * (w / s.pdf)
+    f * le * tr * (light_weight(s, pdf, true) / s.pdf)
 }
 
 /// The share of light that travels along `ray` (leaving `from`, starting in `medium`) for a
