@@ -51,6 +51,17 @@ def test_overrides_match_the_commands_flags(lucent_bin, tmp_path):
     assert img.meta["rays"]["camera"] == 32 * 32 * 3
 
 
+def test_media_render_from_python_and_count_their_scattering(lucent_bin, tmp_path):
+    scene = EXAMPLES / "media.toml"
+    img = lucent.load(scene).render(width=24, height=24, spp=4, threads=1, progress=False)
+    want = cli_render(
+        lucent_bin, scene, tmp_path / "cli.pfm", "--width", "24", "--height", "24", "--spp", "4",
+    )
+    assert np.array_equal(np.asarray(img), want)
+    rays = img.meta["rays"]
+    assert rays["scattered"] > 0 and rays["total"] >= rays["camera"] + rays["scattered"]
+
+
 def test_a_scene_from_a_string_equals_its_file(tmp_path):
     scene = EXAMPLES / "whitted.toml"
     from_text = lucent.load_string(scene.read_text(), base_dir=EXAMPLES)
