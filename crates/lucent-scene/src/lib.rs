@@ -28,6 +28,7 @@ pub mod paths;
 pub mod ply;
 pub mod serialized;
 pub mod tangents;
+pub mod vol;
 
 pub use build::{Loaded, build};
 pub use desc::SceneDesc;

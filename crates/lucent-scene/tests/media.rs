@@ -126,7 +126,7 @@ fn bad_media_are_refused_at_their_place() {
         9,
         "`scale` must be at least 0",
     );
-    assert_error(&medium("density = 3"), 18, 1, "unknown field `density`");
+    assert_error(&medium("grid = 3"), 18, 1, "unknown field `grid`");
     let twice = format!("{}[[medium]]\nname = \"m\"\n", medium("sigma_s = 1"));
     assert_error(&twice, 20, 8, "a medium named `m` already exists");
 }

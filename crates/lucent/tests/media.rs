@@ -162,7 +162,7 @@ fn single_scattering(medium: &Medium, i: f32) -> f32 {
 fn single_scattering_of_a_point_light_matches_its_integral() {
     // max_depth 0: the camera ray scatters once and sees the light by its light sample only.
     let medium = Medium::new(Rgb::gray(0.1), Rgb::gray(0.25), 0.0);
-    let mut b = sphere_of(medium, 2.0, through_the_centre(0.5), Rgb::BLACK);
+    let mut b = sphere_of(medium.clone(), 2.0, through_the_centre(0.5), Rgb::BLACK);
     b.light(Light::Point(PointLight {
         position: Vec3::ZERO,
         intensity: Rgb::gray(3.0),

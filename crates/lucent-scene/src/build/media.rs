@@ -1,11 +1,13 @@
 //! `[[medium]]` tables to the scene's media, and the names objects and the camera use.
 
 use super::Context;
-use crate::desc::{Color, MediumDesc, SceneDesc};
+use crate::desc::{Color, MediumDesc, Point, SceneDesc};
 use crate::error::LoadError;
+use glam::{Affine3A, Quat};
 use lucent::Rgb;
-use lucent::medium::{Medium, MediumInterface, phase::MAX_G};
+use lucent::medium::{DensityGrid, Medium, MediumInterface, phase::MAX_G};
 use std::collections::HashMap;
+use std::sync::Arc;
 use toml::Spanned;
 
 /// The media of a scene file, by name.
@@ -66,7 +68,7 @@ impl<'a> Media<'a> {
 }
 
 /// The medium `m` describes, its keys checked.
-fn medium(ctx: &Context, m: &Spanned<MediumDesc>) -> Result<Medium, LoadError> {
+fn medium(ctx: &mut Context, m: &Spanned<MediumDesc>) -> Result<Medium, LoadError> {
     let d = m.get_ref();
     let err = |span: std::ops::Range<usize>, why: &str| ctx.source.error(span, why.to_string());
     let value = |c: &Option<Spanned<Color>>| c.as_ref().map(|c| c.get_ref().0);
@@ -117,5 +119,51 @@ fn medium(ctx: &Context, m: &Spanned<MediumDesc>) -> Result<Medium, LoadError> {
     if !medium.sigma_t().is_finite() {
         return Err(err(m.span(), "the coefficients times `scale` overflow"));
     }
-    Ok(medium)
+    match &d.density {
+        Some(file) => Ok(medium.with_density(Arc::new(density(ctx, file, &d.bounds)?))),
+        None if d.bounds.is_some() => {
+            Err(err(m.span(), "`bounds` places a `density` grid: give one"))
+        }
+        None => Ok(medium),
+    }
+}
+
+/// The density grid in the `.vol` file `file` names, over `bounds` or the file's own box.
+fn density(
+    ctx: &mut Context,
+    file: &Spanned<String>,
+    bounds: &Option<Spanned<[Point; 2]>>,
+) -> Result<DensityGrid, LoadError> {
+    let path = ctx.path(file.get_ref(), file.span())?;
+    let bytes = crate::input::read(&path).map_err(|e| {
+        ctx.source
+            .error(file.span(), format!("grid file `{}`: {e}", path.display()))
+    })?;
+    ctx.inputs.add(&bytes);
+    let vol = crate::vol::parse_vol(&path, &bytes)?;
+    let (min, max, span) = match bounds {
+        Some(b) => {
+            let [lo, hi] = b.get_ref();
+            (ctx.local(lo.0), ctx.local(hi.0), b.span())
+        }
+        None => (
+            ctx.local(vol.bounds.0.as_dvec3()),
+            ctx.local(vol.bounds.1.as_dvec3()),
+            file.span(),
+        ),
+    };
+    if !(min.cmplt(max).all() && min.is_finite() && max.is_finite()) {
+        let whose = if bounds.is_some() {
+            "`bounds`"
+        } else {
+            "the grid file's box"
+        };
+        return Err(ctx.source.error(
+            span,
+            format!("{whose} must have min < max on every axis, got {min} and {max}"),
+        ));
+    }
+    let to_world = Affine3A::from_scale_rotation_translation(max - min, Quat::IDENTITY, min);
+    DensityGrid::new(vol.res, vol.values, to_world)
+        .map_err(|e| LoadError::file(&path, format!("volume grid: {e}")))
 }

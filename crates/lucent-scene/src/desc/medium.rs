@@ -1,13 +1,14 @@
 //! `[[medium]]` tables: participating media (see `docs/media.md`).
 
-use super::{Color, Finite};
+use super::{Color, Finite, Point};
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
 /// One `[[medium]]`: a homogeneous medium, by its absorption and scattering coefficients
 /// (`sigma_a`, `sigma_s`) or by its extinction and single-scattering albedo (`sigma_t`,
 /// `albedo`: Mitsuba's terms), each a number or `[r, g, b]` per unit of scene length, times
-/// `scale`; `g` is the Henyey–Greenstein mean cosine (0: isotropic).
+/// `scale`; `g` is the Henyey–Greenstein mean cosine (0: isotropic). With `density` (a grid
+/// file) the medium is heterogeneous: the coefficients are its values at density 1.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MediumDesc {
@@ -32,6 +33,13 @@ pub struct MediumDesc {
     /// The phase function's mean cosine, in (−1, 1) (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub g: Option<Spanned<Finite>>,
+    /// A heterogeneous medium's density: a Mitsuba `.vol` grid file of one channel, relative
+    /// to the scene file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<Spanned<String>>,
+    /// The box `[min, max]` the density grid spans (default: the box its file gives).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bounds: Option<Spanned<[Point; 2]>>,
 }
 
 impl MediumDesc {
@@ -45,6 +53,8 @@ impl MediumDesc {
             albedo: None,
             scale: None,
             g: None,
+            density: None,
+            bounds: None,
         }
     }
 }

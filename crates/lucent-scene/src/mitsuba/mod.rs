@@ -329,6 +329,7 @@ fn known_types(tag: &str) -> Option<&'static [&'static str]> {
         "texture" => texture::TYPES,
         "medium" => medium::TYPES,
         "phase" => medium::PHASES,
+        "volume" => medium::VOLUMES,
         _ => return None,
     })
 }
@@ -348,10 +349,7 @@ fn index<'a>(el: &'a Element, ids: &mut Ids<'a>) -> Result<(), LoadError> {
     for c in &el.children {
         if PLUGIN_TAGS.contains(&c.tag.as_str()) {
             let Some(known) = known_types(&c.tag) else {
-                return Err(c.loc.error(format!(
-                    "<{}> is not read by lucent (it renders homogeneous media only)",
-                    c.tag
-                )));
+                return Err(c.loc.error(format!("<{}> is not read by lucent", c.tag)));
             };
             let kind = plugin_type(c)
                 .ok_or_else(|| c.loc.error(format!("<{}> needs a `type` attribute", c.tag)))?;

@@ -76,9 +76,9 @@ fn media_lucent_cannot_read_are_refused_at_their_place() {
     let dir = Dir::new("media-refused");
     let cases = [
         (
-            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"/></shape>"#,
+            r#"    <shape type="sphere"><medium type="spatiallyvarying" name="interior"/></shape>"#,
             "<medium",
-            "unknown medium type `heterogeneous` (lucent reads: homogeneous)",
+            "unknown medium type `spatiallyvarying` (lucent reads: homogeneous, heterogeneous)",
         ),
         (
             r#"    <shape type="sphere"><medium type="homogeneous"/></shape>"#,
@@ -101,15 +101,98 @@ fn media_lucent_cannot_read_are_refused_at_their_place() {
             "unknown phase type `rayleigh`",
         ),
         (
-            r#"    <shape type="sphere"><medium type="homogeneous" name="interior"><volume type="gridvolume" name="albedo"/></medium></shape>"#,
+            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="albedo"/></medium></shape>"#,
             "<volume",
-            "<volume> is not read by lucent",
+            "a grid of `albedo` is not read",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="homogeneous" name="interior"><volume type="gridvolume" name="sigma_t"/></medium></shape>"#,
+            "<volume",
+            "a grid of `sigma_t` is not read",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="sigma_t"><string name="filename" value="g.vol"/><transform name="to_world"><rotate y="1" angle="30"/></transform></volume></medium></shape>"#,
+            "<transform",
+            "without turning or mirroring it",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="sigma_t"><string name="filename" value="g.vol"/><string name="filter_type" value="nearest"/></volume></medium></shape>"#,
+            "nearest",
+            "filter_type `nearest` is not read",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="density"/></medium></shape>"#,
+            "<volume",
+            "a medium's volumes are `sigma_t` and `albedo`, not `density`",
+        ),
+        (
+            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="sigma_t"><string name="filename" value="missing.vol"/></volume></medium></shape>"#,
+            "missing.vol",
+            "not found",
         ),
     ];
+    dir.write("g.vol", lucent_scene::vol::write_vol(&grid()));
     for (i, (body, at, words)) in cases.into_iter().enumerate() {
         let text = scene(body);
         let path = dir.write(&format!("bad-{i}.xml"), &text);
         let e = import_error(&path, &open());
         assert_error(&e, &path, position(&text, at), words);
+    }
+}
+
+fn grid() -> lucent_scene::vol::VolGrid {
+    lucent_scene::vol::VolGrid {
+        res: [2, 3, 4],
+        values: (0..24).map(|i| i as f32 / 10.0).collect(),
+        bounds: (glam::Vec3::ZERO, glam::Vec3::ONE),
+    }
+}
+
+#[test]
+fn a_heterogeneous_medium_reads_its_grid_and_where_it_lies() {
+    let dir = Dir::new("media-grid");
+    dir.write("smoke/grid.vol", lucent_scene::vol::write_vol(&grid()));
+    let text = scene(
+        r#"    <integrator type="volpath"/>
+    <shape type="cube">
+        <bsdf type="null"/>
+        <medium type="heterogeneous" name="interior">
+            <volume name="sigma_t" type="gridvolume">
+                <string name="filename" value="smoke/grid.vol"/>
+                <transform name="to_world"><scale x="2" y="4" z="6"/><translate x="-1" y="-2" z="-3"/></transform>
+            </volume>
+            <volume name="albedo" type="constvolume"><rgb name="value" value="0.9, 0.8, 0.7"/></volume>
+            <float name="scale" value="20"/>
+            <integer name="majorant_resolution_factor" value="8"/>
+        </medium>
+    </shape>"#,
+    );
+    let path = dir.write("grid.xml", &text);
+    let imported = import(&path);
+    assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    let o = objects(&imported)[0];
+    let m = medium(&imported, o.interior.as_ref().unwrap().get_ref());
+    assert_eq!(m.density.as_ref().unwrap().get_ref(), "smoke/grid.vol");
+    let [lo, hi] = m.bounds.as_ref().unwrap().get_ref();
+    assert_eq!(
+        (lo.0, hi.0),
+        (
+            glam::DVec3::new(-1.0, -2.0, -3.0),
+            glam::DVec3::new(1.0, 2.0, 3.0)
+        )
+    );
+    assert_eq!(color(&m.sigma_t), Some(Rgb::WHITE));
+    assert_eq!(color(&m.albedo), Some(Rgb::new(0.9, 0.8, 0.7)));
+    assert_eq!(m.scale.as_ref().map(|s| s.get_ref().0), Some(20.0));
+    let (_, loaded) = load(&path);
+    let built = loaded.scene.medium(0);
+    let density = built.density.as_ref().expect("a grid");
+    assert_eq!(density.resolution(), [2, 3, 4]);
+    // Voxel (1, 0, 3)'s centre is the unit cube's (3/4, 1/6, 7/8): the scene's (0.5, −4/3,
+    // 2.25); nearer the face than the first centre in y, the value is held.
+    let want = grid().values[1 + 2 * 3 * 3];
+    for y in [-4.0 / 3.0, -1.8] {
+        let got = density.density(glam::Vec3::new(0.5, y, 2.25));
+        assert!((got - want).abs() < 1e-5, "at y {y}: {got} not {want}");
     }
 }

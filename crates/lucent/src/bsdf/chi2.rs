@@ -10,31 +10,17 @@
 
 use glam::Vec3;
 
-/// A small deterministic generator for tests: splitmix64 (Steele, Lea & Flood 2014).
-pub(super) struct Rng(u64);
+/// Test draws: the crate's generator, with uniform directions on top.
+pub(super) use crate::sampling::Rng;
 
-impl Rng {
-    /// A generator whose stream is a pure function of `seed`.
-    pub fn new(seed: u64) -> Self {
-        Self(seed ^ 0x5851_f42d_4c95_7f2d)
-    }
-
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// A uniform float in `[0, 1)`, 24 random bits.
-    pub fn f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
-    }
-
+/// Uniform directions from a generator.
+pub(super) trait Directions {
     /// A uniform direction on the unit sphere.
-    pub fn sphere(&mut self) -> Vec3 {
+    fn sphere(&mut self) -> Vec3;
+}
+
+impl Directions for Rng {
+    fn sphere(&mut self) -> Vec3 {
         let z = 1.0 - 2.0 * self.f32();
         let r = (1.0 - z * z).max(0.0).sqrt();
         let phi = std::f32::consts::TAU * self.f32();

@@ -1,12 +1,14 @@
 //! Volumetric path tracing: the path tracer of [`super::path`] through participating media
 //! ([`crate::medium`]), which it runs whenever a scene has media (Mitsuba's `volpath`).
 //!
-//! Along each segment in a medium a distance is sampled ([`Medium::sample_distance`]): before
+//! Along each segment in a medium a distance is sampled ([`crate::medium::Medium::sample_along`]: exactly in a
+//! homogeneous medium, by delta tracking through a grid's density): before
 //! the next surface the path scatters in the medium, by its phase function; past it the
 //! surface is reached as without media. At a scattering point in a medium, direct light is
 //! gathered as at a surface — a light sample weighed by the power heuristic against the phase
 //! function's sample, which finds lights too — with the phase function in the BSDF's place.
-//! Shadow rays carry the transmittance of every medium they cross and pass through null
+//! Shadow rays carry the transmittance of every medium they cross (exact, or by ratio tracking
+//! through a grid) and pass through null
 //! surfaces (index-matched boundaries: cut away, `opacity = 0`), so a light inside a glass of
 //! murky water is dimmed by the water, not blocked by its surface. Crossing a surface of an
 //! object with media puts the path in the medium on the side it goes to.
@@ -22,6 +24,7 @@ use crate::bsdf::Transport;
 use crate::integrator::PathTracer;
 use crate::light::EmitterSample;
 use crate::medium::Interaction;
+use crate::sampling::Rng;
 use crate::sampling::sobol::Sampler;
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
@@ -60,6 +63,8 @@ impl PathTracer {
         // by their mean (see `crate::medium`).
         let hero = ((sampler.next_1d() * 3.0) as usize).min(2);
         let mut ratio = Rgb::WHITE;
+        // Tracking through grids draws as many numbers as it meets collisions.
+        let mut rng = sampler.stream();
         loop {
             // The same dimensions for every segment, whichever way it goes (see `arrive`).
             let mut u_distance = sampler.defer(1);
@@ -71,9 +76,10 @@ impl PathTracer {
             let hit = scene.intersect_from(&ray, path.from, &mut stats.traversal);
             if let Some(m) = medium {
                 let end = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
+                let u = u_distance.next_1d();
                 match scene
                     .medium(m)
-                    .sample_distance(end, hero, u_distance.next_1d())
+                    .sample_along((ray.origin, ray.dir), end, hero, u, &mut rng)
                 {
                     Interaction::Scatter {
                         t,
@@ -87,6 +93,7 @@ impl PathTracer {
                             &mut path,
                             (m, at),
                             [u_light, u_scatter, u_rr],
+                            &mut rng,
                             stats,
                         ) {
                             break;
@@ -130,8 +137,8 @@ impl PathTracer {
                 if let Some(s) = scene.emitters.sample(&scene.lights, v.hit.point, u_pick, u) {
                     let (f, pdf) = v.bsdf.eval_pdf(v.wo, s.wi, Transport::Radiance);
                     let start = interface.towards(v.hit.normal, s.wi, medium);
-                    path.l +=
-                        path.beta * lit(scene, From::Surface(&v.hit), start, &s, (f, pdf), stats);
+                    let from = (From::Surface(&v.hit), start);
+                    path.l += path.beta * lit(scene, from, &s, (f, pdf), &mut rng, stats);
                 }
             }
             let mut u_scatter = u_scatter;
@@ -155,6 +162,7 @@ impl PathTracer {
         path: &mut Path,
         (m, at): (u32, Vec3),
         [mut u_light, mut u_phase, u_rr]: [Sampler; 3],
+        rng: &mut Rng,
         stats: &mut RayStats,
     ) -> bool {
         if path.depth > self.max_depth {
@@ -165,15 +173,8 @@ impl PathTracer {
         let (u_pick, u) = (u_light.next_1d(), u_light.next_2d());
         if let Some(s) = scene.emitters.sample(&scene.lights, at, u_pick, u) {
             let p = phase.eval(wo, s.wi);
-            path.l += path.beta
-                * lit(
-                    scene,
-                    From::Medium(at),
-                    Some(m),
-                    &s,
-                    (Rgb::gray(p), p),
-                    stats,
-                );
+            let from = (From::Medium(at), Some(m));
+            path.l += path.beta * lit(scene, from, &s, (Rgb::gray(p), p), rng, stats);
         }
         let (wi, pdf) = phase.sample(wo, u_phase.next_2d());
         let ray = Ray::new(at, wi);
@@ -206,10 +207,10 @@ fn spectral_mis(ratio: &mut Rgb, weight: Rgb, r: Rgb) -> Rgb {
 /// `f·Tr·Le / p`, weighed by the power heuristic against the scattering's own sample.
 fn lit(
     scene: &Scene,
-    from: From<'_>,
-    start: Option<u32>,
+    (from, start): (From<'_>, Option<u32>),
     s: &EmitterSample,
     (f, pdf): (Rgb, f32),
+    rng: &mut Rng,
     stats: &mut RayStats,
 ) -> Rgb {
     if f.is_black() {
@@ -230,7 +231,7 @@ fn lit(
     if !traceable(&ray, stats) {
         return Rgb::BLACK;
     }
-    let tr = transmittance(scene, ray, leaving, shadow_reach(s), start, stats);
+    let tr = transmittance(scene, (ray, leaving), shadow_reach(s), start, rng, stats);
     if tr.is_black() {
         return Rgb::BLACK;
     }
@@ -238,14 +239,14 @@ fn lit(
 }
 
 /// The share of light that travels along `ray` (leaving `from`, starting in `medium`) for a
-/// distance `t_max`: the media's transmittance over each stretch, through the surfaces that do
-/// not stop it; 0 when one does.
+/// distance `t_max`: the media's transmittance over each stretch (estimated with `rng`
+/// through grids), through the surfaces that do not stop it; 0 when one does.
 fn transmittance(
     scene: &Scene,
-    ray: Ray,
-    from: Option<Leaving>,
+    (ray, from): (Ray, Option<Leaving>),
     t_max: f32,
     medium: Option<u32>,
+    rng: &mut Rng,
     stats: &mut RayStats,
 ) -> Rgb {
     // First the cheap any-hit query, which stops at the first surface that surely blocks; only
@@ -262,18 +263,20 @@ fn transmittance(
     }
     match (crosses, medium) {
         (false, None) => Rgb::WHITE,
-        (false, Some(m)) => scene.medium(m).transmittance(t_max),
-        (true, _) => transmittance_across(scene, ray, from, t_max, medium, stats),
+        (false, Some(m)) => scene
+            .medium(m)
+            .transmittance_along((ray.origin, ray.dir), t_max, rng),
+        (true, _) => transmittance_across(scene, (ray, from), t_max, medium, rng, stats),
     }
 }
 
 /// [`transmittance`] by walking every surface along the ray, nearest first.
 fn transmittance_across(
     scene: &Scene,
-    mut ray: Ray,
-    mut from: Option<Leaving>,
+    (mut ray, mut from): (Ray, Option<Leaving>),
     t_max: f32,
     mut medium: Option<u32>,
+    rng: &mut Rng,
     stats: &mut RayStats,
 ) -> Rgb {
     let mut tr = Rgb::WHITE;
@@ -282,7 +285,9 @@ fn transmittance_across(
         let hit = scene.intersect_from(&ray, from, &mut stats.traversal);
         let stretch = hit.as_ref().map_or(left, |h| h.t.min(left));
         if let Some(m) = medium {
-            tr *= scene.medium(m).transmittance(stretch);
+            tr *= scene
+                .medium(m)
+                .transmittance_along((ray.origin, ray.dir), stretch, rng);
             if tr.is_black() {
                 return Rgb::BLACK;
             }

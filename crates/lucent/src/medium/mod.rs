@@ -20,21 +20,30 @@
 //! rare. [`Interaction`] gives both factors a distance sample contributes: the throughput's
 //! (`f/p_hero`) and the channels' densities relative to the hero's (`p_c/p_hero`).
 
+pub mod grid;
 pub mod phase;
+mod track;
 
+pub use grid::DensityGrid;
 pub use phase::HenyeyGreenstein;
 
 use crate::Rgb;
+use crate::sampling::Rng;
+use glam::Vec3;
+use std::sync::Arc;
 
-/// A homogeneous medium: the same coefficients everywhere inside it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A medium: homogeneous (the same coefficients everywhere inside it), or heterogeneous, its
+/// coefficients scaled at every point by a grid's density.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Medium {
-    /// Absorption per unit length, per channel.
+    /// Absorption per unit length, per channel (at density 1 in a heterogeneous medium).
     pub sigma_a: Rgb,
-    /// Scattering per unit length, per channel.
+    /// Scattering per unit length, per channel (at density 1 in a heterogeneous medium).
     pub sigma_s: Rgb,
     /// How it scatters.
     pub phase: HenyeyGreenstein,
+    /// The density at each point, if the medium is heterogeneous.
+    pub density: Option<Arc<DensityGrid>>,
 }
 
 /// Which media lie on either side of an object's surface (indices into the scene's media).
@@ -101,6 +110,15 @@ impl Medium {
             sigma_a,
             sigma_s,
             phase: HenyeyGreenstein::new(g),
+            density: None,
+        }
+    }
+
+    /// This medium made heterogeneous: its coefficients scaled by `grid`'s density.
+    pub fn with_density(self, grid: Arc<DensityGrid>) -> Self {
+        Self {
+            density: Some(grid),
+            ..self
         }
     }
 
@@ -122,8 +140,37 @@ impl Medium {
         self.sigma_t().map(|s| transmit(s, d))
     }
 
-    /// A distance sample along a segment of length `end` (infinite for a ray that escapes),
-    /// drawn from the exponential of channel `hero` (0, 1, 2) with `u` uniform in `[0, 1)`.
+    /// The transmittance along `origin + t·dir` (unit `dir`) over `[0, end]`: exact in a
+    /// homogeneous medium, an unbiased estimate by ratio tracking (randomness from `rng`) in a
+    /// heterogeneous one.
+    pub fn transmittance_along(&self, ray: (Vec3, Vec3), end: f32, rng: &mut Rng) -> Rgb {
+        match &self.density {
+            None => self.transmittance(end),
+            Some(grid) => track::transmittance(self, grid, ray, end, rng),
+        }
+    }
+
+    /// A distance sample along `origin + t·dir` (unit `dir`) for a segment of length `end`
+    /// (infinite for a ray that escapes), by channel `hero` (0, 1, 2): the homogeneous
+    /// medium's [`Medium::sample_distance`] with `u`, or delta tracking through a grid, its
+    /// first collision drawn from `u` and the rest from `rng`.
+    pub fn sample_along(
+        &self,
+        ray: (Vec3, Vec3),
+        end: f32,
+        hero: usize,
+        u: f32,
+        rng: &mut Rng,
+    ) -> Interaction {
+        match &self.density {
+            None => self.sample_distance(end, hero, u),
+            Some(grid) => track::sample_distance(self, grid, ray, end, hero, u, rng),
+        }
+    }
+
+    /// A distance sample along a segment of length `end` (infinite for a ray that escapes)
+    /// in a homogeneous medium, drawn from the exponential of channel `hero` (0, 1, 2) with `u`
+    /// uniform in `[0, 1)`.
     pub fn sample_distance(&self, end: f32, hero: usize, u: f32) -> Interaction {
         if self.sigma_s.is_black() {
             // Nothing scatters: the transmittance itself, with no noise.
@@ -179,5 +226,7 @@ fn transmit(sigma: f32, d: f32) -> f32 {
     }
 }
 
+#[cfg(test)]
+mod grid_tests;
 #[cfg(test)]
 mod tests;

@@ -6,10 +6,12 @@
 
 pub mod distribution;
 pub mod mis;
+mod rng;
 pub mod sobol;
 pub mod stratified;
 pub mod warp;
 
+pub use rng::Rng;
 pub use stratified::pixel_offset;
 
 /// A 64-bit finaliser with full avalanche (the splitmix64 output function).

@@ -29,7 +29,7 @@ use glam::Vec2;
 
 use crate::lanes::LANES;
 
-use super::{hash, mix64, to_unit_float};
+use super::{Rng, hash, mix64, to_unit_float};
 
 /// Distinguishes the sampler's scrambling keys from other uses of [`hash`] with the same
 /// arguments (the digits of π).
@@ -195,6 +195,14 @@ impl Sampler {
     /// The sample's index within its pixel.
     pub fn index(&self) -> u32 {
         self.index
+    }
+
+    /// A sequential generator of this sample's own, for draws whose number is not known in
+    /// advance; its stream depends on the pixel, the sample and the dimension reached.
+    pub fn stream(&self) -> Rng {
+        Rng::new(mix64(
+            self.pixel_key ^ (u64::from(self.index) << 32 | u64::from(self.dimension)),
+        ))
     }
 
     /// How many dimensions have been drawn so far (one per value).

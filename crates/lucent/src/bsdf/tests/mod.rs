@@ -4,7 +4,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::chi2::{self, Rng};
+use super::chi2::{self, Directions, Rng};
 use super::microfacet::{Distribution, Microfacet};
 use super::{Bsdf, BsdfSample, GltfPbr, Principled, PrincipledThin, RoughCoat, Sheen, Transport};
 use crate::Rgb;
