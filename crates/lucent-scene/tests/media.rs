@@ -60,19 +60,72 @@ fn a_null_surface_alone_is_invisible_and_a_camera_in_fog_sees_the_fog() {
 }
 
 #[test]
-fn media_render_only_under_the_path_tracer_and_the_others_say_so() {
-    let text =
-        format!("{VIEW}[[medium]]\nname = \"ink\"\nsigma_a = 1\n{SPHERE}interior = \"ink\"\n")
-            .replace("integrator = \"path\"", "integrator = \"whitted\"");
-    let loaded = load(&text).unwrap();
+fn whitted_dims_by_media_and_the_photon_mapper_says_it_leaves_them_out() {
+    let whitted = |text: String| text.replace("integrator = \"path\"", "integrator = \"whitted\"");
+    // Through the absorbing sphere: exp(−4σa) exactly, no noise.
+    let ink = format!(
+        "{VIEW}[[medium]]\nname = \"ink\"\nsigma_a = [0.1, 0.5, 1.0]\nscale = 2\n{SPHERE}interior = \"ink\"\n"
+    );
+    let got = pixel(&whitted(ink.clone()));
+    for (c, s) in [0.1f32, 0.5, 1.0].into_iter().enumerate() {
+        let want = (-4.0 * s).exp();
+        assert!(
+            (got[c] - want).abs() < 1e-4 * want,
+            "channel {c}: {} against {want}",
+            got[c]
+        );
+    }
+    assert!(load(&whitted(ink.clone())).unwrap().warnings.is_empty());
+    // The camera in endless fog of albedo 1/2 under ambient light 0.4 sees its glow, 0.2, and
+    // nothing of the background.
+    let fog = format!("{VIEW}[[medium]]\nname = \"fog\"\nsigma_s = 0.5\nsigma_a = 0.5\n")
+        .replace("fov = 0.01\n", "fov = 0.01\nmedium = \"fog\"\n")
+        .replace("background = 1.0\n", "background = 1.0\nambient = 0.4\n");
+    let got = pixel(&whitted(fog));
+    for c in got {
+        assert!((c - 0.2).abs() < 1e-5, "{got:?}");
+    }
+    let sppm = ink.replace("integrator = \"path\"", "integrator = \"sppm\"");
+    let loaded = load(&sppm).unwrap();
     assert!(
         loaded
             .warnings
             .iter()
-            .any(|w| w.contains("whitted integrator renders no participating media")),
+            .any(|w| w.contains("sppm integrator renders no participating media")),
         "{:?}",
         loaded.warnings
     );
+}
+
+#[test]
+fn whitteds_shadow_rays_are_dimmed_by_the_media_they_cross() {
+    // A white plane at z = 0 seen head-on at the origin, lit by a point light at (0, 4, 4)
+    // whose shadow ray crosses a null sphere of radius 0.5 on its way (a chord of 1): with ink
+    // of σa = (0.2, 0.7, 1.5) inside it, the pixel is exp(−σa) of the pixel without.
+    let scene = |interior: &str| {
+        format!(
+            "[image]\nwidth = 1\nheight = 1\nsamples = 1\n\
+             [camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 0.01\n\
+             [render]\nintegrator = \"whitted\"\n\
+             [[medium]]\nname = \"ink\"\nsigma_a = [0.2, 0.7, 1.5]\n\
+             [[material]]\nname = \"boundary\"\ntype = \"null\"\n\
+             [[material]]\nname = \"white\"\ntype = \"diffuse\"\nreflectance = 0.8\n\
+             [[light]]\ntype = \"point\"\nposition = [0, 4, 4]\nintensity = 30\n\
+             [[object]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nmaterial = \"white\"\n\
+             [[object]]\ntype = \"sphere\"\ncenter = [0, 2, 2]\nradius = 0.5\nmaterial = \"boundary\"\n{interior}"
+        )
+    };
+    let clear = pixel(&scene(""));
+    let dimmed = pixel(&scene("interior = \"ink\"\n"));
+    assert!(clear[0] > 0.01, "{clear:?}");
+    for (c, s) in [0.2f32, 0.7, 1.5].into_iter().enumerate() {
+        let want = clear[c] * (-s).exp();
+        assert!(
+            (dimmed[c] - want).abs() < 1e-4 * clear[c],
+            "channel {c}: {} against {want}",
+            dimmed[c]
+        );
+    }
 }
 
 /// The error for `text`, checked to be at `line:column` and to mention `cause`.

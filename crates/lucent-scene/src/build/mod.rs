@@ -337,9 +337,13 @@ pub fn build_with_files(
         let id = media.named(&ctx, name)?;
         ctx.builder.media().camera_in(Some(id));
     }
-    if !desc.media.is_empty() && !matches!(settings.integrator, Integrator::Path(_)) {
+    let renders_media = matches!(
+        settings.integrator,
+        Integrator::Path(_) | Integrator::Whitted(_)
+    );
+    if !desc.media.is_empty() && !renders_media {
         ctx.warnings.push(format!(
-            "{}: the {} integrator renders no participating media (the path tracer does): they are left out",
+            "{}: the {} integrator renders no participating media (the path tracer does, and Whitted's dims by them): they are left out",
             source.path.display(),
             settings.integrator.name()
         ));

@@ -16,6 +16,7 @@ pub mod sppm;
 pub mod vertex;
 pub mod volpath;
 pub mod whitted;
+mod whitted_media;
 
 pub use debug::DebugView;
 pub use path::PathTracer;

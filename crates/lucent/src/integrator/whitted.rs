@@ -24,8 +24,11 @@
 //!   secondary ray is traced only when its weight's largest channel reaches `min_weight`, and
 //!   only up to `max_depth` bounces (camera rays are depth 0), and at most
 //!   [`MAX_SECONDARY_RAYS`] per camera ray.
+//! - Participating media dim every ray by their transmittance and glow with the ambient light
+//!   they scatter (POV-Ray's `fog`, from the media's coefficients: see `whitted_media`).
 
 use super::record::{Cut, NoRecord, RayKind, Recorder};
+use super::whitted_media;
 use super::{RayStats, traceable, unless_untraceable};
 use crate::Rgb;
 use crate::material::Material;
@@ -69,6 +72,8 @@ struct Path {
     depth: u32,
     /// Product of the `kr`/`kt` factors from the camera.
     weight: Rgb,
+    /// The participating medium the ray is in (see `whitted_media`).
+    medium: Option<u32>,
 }
 
 /// What one trace carries besides the ray: the scene, the budget, the counters and the
@@ -169,6 +174,7 @@ impl Whitted {
         let path = Path {
             depth: 0,
             weight: Rgb::WHITE,
+            medium: t.scene.camera_medium(),
         };
         let color = self.trace(t, RayKind::Camera, ray, None, &path);
         unless_untraceable(color, t.stats, untraceable)
@@ -183,6 +189,11 @@ impl Whitted {
         path: &Path,
     ) -> Rgb {
         t.record.begin(kind, ray, path.weight);
+        if t.scene.has_media() {
+            // The driver's camera hit may lie past null boundaries: walk them afresh.
+            t.primary = None;
+            return self.trace_through_media(t, ray, from, path);
+        }
         // The driver's camera hit is borrowed, not copied, when it stops the ray (a hit is
         // ~200 bytes: its copies were a tenth of a Whitted render).
         let found;
@@ -213,6 +224,34 @@ impl Whitted {
                 background
             }
         };
+        t.record.end(color);
+        color
+    }
+
+    /// [`Self::trace`] in a scene with media: through the surfaces that do not stop the ray,
+    /// the fog of every medium on the way over what it finds.
+    fn trace_through_media<R: Recorder>(
+        &self,
+        t: &mut Trace<R>,
+        ray: &Ray,
+        from: Option<Leaving>,
+        path: &Path,
+    ) -> Rgb {
+        let (stop, medium, fog) =
+            whitted_media::first_stop(t.scene, *ray, from, path.medium, t.stats);
+        t.record.hit(stop.as_ref().map(|(hit, _)| hit));
+        let found = match &stop {
+            Some((hit, ray)) => {
+                let path = Path { medium, ..*path };
+                self.shade(t, ray, hit, &path)
+            }
+            None => {
+                let background = t.scene.background_along(ray.dir);
+                t.record.local(background);
+                background
+            }
+        };
+        let color = fog.over(found);
         t.record.end(color);
         color
     }
@@ -254,10 +293,19 @@ impl Whitted {
             // Only the camera hit's shadow rays lie in the light's shadow beam.
             let beam = t.shadows.get(j).and_then(Option::as_ref);
             let beam = beam.filter(|_| path.depth == 0);
-            let s = if self.shadows {
-                self.shadow(scene, hit, (l.to_light, l.distance), beam, t.stats)
-            } else {
+            let s = if !self.shadows {
                 Rgb::WHITE
+            } else if scene.has_media() {
+                let (ray, from) = spawn_ray(hit, l.to_light);
+                let start =
+                    scene
+                        .medium_interface(hit.object)
+                        .towards(hit.normal, l.to_light, path.medium);
+                t.stats.shadow += 1;
+                let factor = |m: u32| shadow_factor(&scene.materials[m as usize], 1);
+                whitted_media::shadow(scene, (ray, Some(from)), l.distance, start, factor, t.stats)
+            } else {
+                self.shadow(scene, hit, (l.to_light, l.distance), beam, t.stats)
             };
             if s.is_black() {
                 t.record.light(j, s, Rgb::BLACK);
@@ -285,9 +333,15 @@ impl Whitted {
             let bent = refract(i, n, mu).filter(|t| t.dot(ng) < 0.0);
             match bent.or_else(|| refract(i, ng, mu)) {
                 Some(dir) => {
-                    if let Some(child) = self.child(t, RayKind::Refracted, path, m.kt) {
+                    if let Some(mut child) = self.child(t, RayKind::Refracted, path, m.kt) {
                         t.stats.refracted += 1;
-                        let (ray, from) = spawn_ray(hit, dir.normalize());
+                        let dir = dir.normalize();
+                        child.medium = scene.medium_interface(hit.object).towards(
+                            hit.normal,
+                            dir,
+                            path.medium,
+                        );
+                        let (ray, from) = spawn_ray(hit, dir);
                         if traceable(&ray, t.stats) {
                             let it = self.trace(t, RayKind::Refracted, &ray, Some(from), &child);
                             color += m.kt * it;
@@ -302,11 +356,15 @@ impl Whitted {
             }
         }
         if !kr.is_black()
-            && let Some(child) = self.child(t, RayKind::Reflected, path, kr)
+            && let Some(mut child) = self.child(t, RayKind::Reflected, path, kr)
         {
             t.stats.reflected += 1;
             let r = Some(reflect(i, n)).filter(|r| r.dot(ng) > 0.0);
-            let (ray, from) = spawn_ray(hit, r.unwrap_or_else(|| reflect(i, ng)).normalize());
+            let dir = r.unwrap_or_else(|| reflect(i, ng)).normalize();
+            child.medium = scene
+                .medium_interface(hit.object)
+                .towards(hit.normal, dir, path.medium);
+            let (ray, from) = spawn_ray(hit, dir);
             if traceable(&ray, t.stats) {
                 color += kr * self.trace(t, RayKind::Reflected, &ray, Some(from), &child);
             }
@@ -336,6 +394,7 @@ impl Whitted {
         Some(Path {
             depth: path.depth + 1,
             weight,
+            medium: path.medium,
         })
     }
 

@@ -150,6 +150,26 @@ impl Medium {
         }
     }
 
+    /// The transmittance along `origin + t·dir` (unit `dir`) over `[0, end]` without noise:
+    /// exact in a homogeneous medium, by quadrature through a grid ([`DensityGrid::integral`]).
+    pub fn transmittance_quadrature(&self, (origin, dir): (Vec3, Vec3), end: f32) -> Rgb {
+        match &self.density {
+            None => self.transmittance(end),
+            Some(grid) => {
+                let depth = grid.integral(origin, dir, end);
+                self.sigma_t().map(|s| transmit(s, depth))
+            }
+        }
+    }
+
+    /// The single-scattering albedo `σs/σt` per channel (0 where nothing is taken out).
+    pub fn albedo(&self) -> Rgb {
+        let (s, t) = (self.sigma_s.to_array(), self.sigma_t().to_array());
+        Rgb::from(std::array::from_fn::<f32, 3, _>(|c| {
+            if t[c] > 0.0 { s[c] / t[c] } else { 0.0 }
+        }))
+    }
+
     /// A distance sample along `origin + t·dir` (unit `dir`) for a segment of length `end`
     /// (infinite for a ray that escapes), by channel `hero` (0, 1, 2): the homogeneous
     /// medium's [`Medium::sample_distance`] with `u`, or delta tracking through a grid, its
