@@ -154,4 +154,30 @@ mod tests {
         v2[3] = 2;
         assert!(message(&v2).contains("version 2"));
     }
+
+    #[test]
+    fn mutated_files_give_an_answer_never_a_panic() {
+        let good = write_vol(&grid());
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for _ in 0..20_000 {
+            let mut bytes = good.clone();
+            for _ in 0..1 + next() % 4 {
+                let i = (next() % bytes.len() as u64) as usize;
+                bytes[i] = next() as u8;
+            }
+            let cut = (next() % (bytes.len() as u64 + 1)) as usize;
+            if next() % 4 == 0 {
+                bytes.truncate(cut);
+            }
+            if let Ok(g) = parse_vol(Path::new("m.vol"), &bytes) {
+                assert_eq!(g.values.len(), g.res.iter().product::<usize>());
+            }
+        }
+    }
 }
