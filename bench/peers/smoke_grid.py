@@ -3,8 +3,9 @@ curling column with ripples, fading to 0 at the box's faces (so lucent, which re
 grid, and Mitsuba, which clamps its edges outward, agree wherever the bounding box lies).
 
     python3 bench/peers/smoke_grid.py            # both files
-Needs numpy. Output: examples/smoke.vol (32×40×32) and the conformance case's
-crates/lucent-scene/tests/conformance/textures/smoke.vol (20×24×20).
+Needs numpy. Output: examples/smoke.vol (32×40×32) and the conformance cases'
+crates/lucent-scene/tests/conformance/textures/smoke.vol (20×24×20) and smoke-albedo.vol
+(10×12×10, three channels: sooty and dark low down, whitening as it rises, bluish at one side).
 """
 import os
 import struct
@@ -36,17 +37,32 @@ def plume(nx, ny, nz):
     return np.clip(density / density.max(), 0, None).astype("<f4")
 
 
+def albedo(nx, ny, nz):
+    x = (np.arange(nx) + 0.5) / nx
+    y = (np.arange(ny) + 0.5) / ny
+    z = (np.arange(nz) + 0.5) / nz
+    Z, Y, X = np.meshgrid(z, y, x, indexing="ij")
+    grey = 0.35 + 0.6 * Y
+    rgb = np.stack([grey * (1 - 0.25 * X), grey * (1 - 0.1 * X), grey * (0.8 + 0.2 * X)], axis=-1)
+    return np.clip(rgb, 0, 1).astype("<f4")
+
+
 def write(path, grid):
-    nz, ny, nx = grid.shape
+    nz, ny, nx = grid.shape[:3]
+    channels = grid.shape[3] if grid.ndim == 4 else 1
     with open(path, "wb") as f:
         f.write(b"VOL" + bytes([3]))
-        f.write(struct.pack("<iiiii", 1, nx, ny, nz, 1))
+        f.write(struct.pack("<iiiii", 1, nx, ny, nz, channels))
         f.write(struct.pack("<6f", 0, 0, 0, 1, 1, 1))
-        f.write(grid.tobytes())  # z, y, x order: x fastest
+        f.write(grid.tobytes())  # z, y, x(, channel) order: x fastest, channels interleaved
 
 
 write(os.path.join(ROOT, "examples", "smoke.vol"), plume(32, 40, 32))
 write(
     os.path.join(ROOT, "crates", "lucent-scene", "tests", "conformance", "textures", "smoke.vol"),
     plume(20, 24, 20),
+)
+write(
+    os.path.join(ROOT, "crates", "lucent-scene", "tests", "conformance", "textures", "smoke-albedo.vol"),
+    albedo(10, 12, 10),
 )

@@ -4,7 +4,7 @@
 //! `f32` values; Mitsuba 3 writes no other), three `i32` resolutions `nx, ny, nz`, an `i32`
 //! channel count, the bounding box as six `f32` (`min`, then `max`), then `nx·ny·nz·channels`
 //! values, `x` fastest, then `y`, then `z`, channels interleaved. A density grid has one
-//! channel. The header's sizes are checked against the file's length before anything is
+//! channel, an albedo grid one or three. The header's sizes are checked against the file's length before anything is
 //! allocated, so a file that lies about its size costs no memory.
 
 use crate::error::LoadError;
@@ -15,12 +15,14 @@ use std::path::Path;
 /// The header's length in bytes.
 const HEADER: usize = 48;
 
-/// A `.vol` file's single-channel grid.
+/// A `.vol` file's grid, of one or three channels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VolGrid {
     /// Voxels along x, y, z.
     pub res: [usize; 3],
-    /// The values, `x` fastest.
+    /// Values per voxel: 1 or 3.
+    pub channels: usize,
+    /// The values, channels interleaved, `x` fastest.
     pub values: Vec<f32>,
     /// The box the file gives (Mitsuba 3 ignores it unless told otherwise).
     pub bounds: (Vec3, Vec3),
@@ -46,14 +48,13 @@ pub fn parse_vol(path: &Path, bytes: &[u8]) -> Result<VolGrid, LoadError> {
         )));
     }
     let dims = [int(8), int(12), int(16)];
-    let channels = int(20);
-    if channels != 1 {
-        return Err(err(format!(
-            "{channels} channels: a density grid has exactly 1"
-        )));
-    }
+    let channels = match int(20) {
+        1 => 1,
+        3 => 3,
+        n => return Err(err(format!("{n} channels: lucent reads grids of 1 or 3"))),
+    };
     let res = dims.map(|d| usize::try_from(d).unwrap_or(0));
-    let count = res
+    let voxels = res
         .iter()
         .try_fold(1usize, |n, &r| n.checked_mul(r))
         .filter(|&n| n > 0 && n <= MAX_VOXELS)
@@ -63,10 +64,11 @@ pub fn parse_vol(path: &Path, bytes: &[u8]) -> Result<VolGrid, LoadError> {
                 dims[0], dims[1], dims[2]
             ))
         })?;
+    let count = voxels * channels;
     let data = &bytes[HEADER..];
     if data.len() != count * 4 {
         return Err(err(format!(
-            "the header says {}×{}×{} values ({} bytes) but {} bytes follow it",
+            "the header says {}×{}×{}×{channels} values ({} bytes) but {} bytes follow it",
             res[0],
             res[1],
             res[2],
@@ -82,12 +84,13 @@ pub fn parse_vol(path: &Path, bytes: &[u8]) -> Result<VolGrid, LoadError> {
         .collect();
     Ok(VolGrid {
         res,
+        channels,
         values,
         bounds: (min, max),
     })
 }
 
-/// A `.vol` file's bytes for a single-channel grid (for tests and the example's generator).
+/// A `.vol` file's bytes for a grid (for tests).
 pub fn write_vol(grid: &VolGrid) -> Vec<u8> {
     let mut out = Vec::with_capacity(HEADER + grid.values.len() * 4);
     out.extend_from_slice(b"VOL\x03");
@@ -95,7 +98,7 @@ pub fn write_vol(grid: &VolGrid) -> Vec<u8> {
     for r in grid.res {
         out.extend_from_slice(&(r as i32).to_le_bytes());
     }
-    out.extend_from_slice(&1i32.to_le_bytes());
+    out.extend_from_slice(&(grid.channels as i32).to_le_bytes());
     for v in grid
         .bounds
         .0
@@ -118,6 +121,7 @@ mod tests {
     fn grid() -> VolGrid {
         VolGrid {
             res: [3, 2, 1],
+            channels: 1,
             values: vec![0.0, 0.5, 1.0, 1.5, 2.0, 2.5],
             bounds: (Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.5)),
         }
@@ -144,8 +148,10 @@ mod tests {
         negative[16..20].copy_from_slice(&(-4i32).to_le_bytes());
         assert!(message(&negative).contains("negative"));
         let mut rgb = good.clone();
+        rgb[20..24].copy_from_slice(&2i32.to_le_bytes());
+        assert!(message(&rgb).contains("2 channels"));
         rgb[20..24].copy_from_slice(&3i32.to_le_bytes());
-        assert!(message(&rgb).contains("exactly 1"));
+        assert!(message(&rgb).contains("3 values (72 bytes) but 24"));
         let mut half = good.clone();
         half[4..8].copy_from_slice(&2i32.to_le_bytes());
         assert!(message(&half).contains("encoding 2"));
@@ -176,7 +182,7 @@ mod tests {
                 bytes.truncate(cut);
             }
             if let Ok(g) = parse_vol(Path::new("m.vol"), &bytes) {
-                assert_eq!(g.values.len(), g.res.iter().product::<usize>());
+                assert_eq!(g.values.len(), g.channels * g.res.iter().product::<usize>());
             }
         }
     }

@@ -42,6 +42,7 @@ fn ramp(n: usize, (lo, hi): (Vec3, Vec3), (a, b): (f32, f32)) -> VolGrid {
         .collect();
     VolGrid {
         res: [1, 1, n],
+        channels: 1,
         values,
         bounds: (lo, hi),
     }
@@ -166,6 +167,34 @@ fn grids_that_lie_or_make_no_sense_are_refused() {
         &medium("sigma_t = 1\ndensity = \"good.vol\"\nbounds = [[0, 0, 0], [1, 0, 1]]"),
         "grids.toml:26:10",
         "`bounds` must have min < max",
+    );
+    assert_error(
+        d,
+        &medium("sigma_t = 1\nalbedo_grid = \"good.vol\""),
+        "grids.toml:25:15",
+        "an `albedo_grid` needs a `density` grid",
+    );
+    let rgb = VolGrid {
+        channels: 3,
+        values: vec![0.5; 12],
+        ..good.clone()
+    };
+    std::fs::write(dir.0.join("rgb.vol"), write_vol(&rgb)).unwrap();
+    assert_error(
+        d,
+        &medium("sigma_t = 1\ndensity = \"rgb.vol\""),
+        "grids.toml:25:11",
+        "has 3 channels; a density grid has 1",
+    );
+    let mut bright = rgb.clone();
+    bright.values[7] = 1.5;
+    std::fs::write(dir.0.join("bright.vol"), write_vol(&bright)).unwrap();
+    let bright_file = d.join("bright.vol").display().to_string();
+    assert_error(
+        d,
+        &medium("sigma_t = 1\ndensity = \"good.vol\"\nalbedo_grid = \"bright.vol\""),
+        &bright_file,
+        "voxel (0, 0, 2) holds albedo 1.5",
     );
     assert_error(
         d,

@@ -5,7 +5,7 @@ use crate::desc::{Color, MediumDesc, Point, SceneDesc};
 use crate::error::LoadError;
 use glam::{Affine3A, Quat};
 use lucent::Rgb;
-use lucent::medium::{DensityGrid, Medium, MediumInterface, phase::MAX_G};
+use lucent::medium::{AlbedoGrid, DensityGrid, Medium, MediumInterface, phase::MAX_G};
 use std::collections::HashMap;
 use std::sync::Arc;
 use toml::Spanned;
@@ -119,21 +119,39 @@ fn medium(ctx: &mut Context, m: &Spanned<MediumDesc>) -> Result<Medium, LoadErro
     if !medium.sigma_t().is_finite() {
         return Err(err(m.span(), "the coefficients times `scale` overflow"));
     }
-    match &d.density {
-        Some(file) => Ok(medium.with_density(Arc::new(density(ctx, file, &d.bounds)?))),
-        None if d.bounds.is_some() => {
-            Err(err(m.span(), "`bounds` places a `density` grid: give one"))
-        }
-        None => Ok(medium),
+    let Some(file) = &d.density else {
+        return match (&d.bounds, &d.albedo_grid) {
+            (Some(_), _) => Err(err(m.span(), "`bounds` places a `density` grid: give one")),
+            (_, Some(a)) => Err(err(a.span(), "an `albedo_grid` needs a `density` grid")),
+            (None, None) => Ok(medium),
+        };
+    };
+    let (vol, path) = grid_file(ctx, file, 1)?;
+    let to_world = placement(ctx, &d.bounds, &vol, file)?;
+    let density = DensityGrid::new(vol.res, vol.values, to_world)
+        .map_err(|e| LoadError::file(&path, format!("volume grid: {e}")))?;
+    let mut medium = medium.with_density(Arc::new(density));
+    if let Some(file) = &d.albedo_grid {
+        let (vol, path) = grid_file(ctx, file, 3)?;
+        let values = match vol.channels {
+            1 => vol.values.iter().map(|&v| Rgb::gray(v)).collect(),
+            _ => (vol.values.chunks_exact(3))
+                .map(|c| Rgb::new(c[0], c[1], c[2]))
+                .collect(),
+        };
+        let albedo = AlbedoGrid::new(vol.res, values, to_world)
+            .map_err(|e| LoadError::file(&path, format!("albedo grid: {e}")))?;
+        medium = medium.with_albedo(Arc::new(albedo));
     }
+    Ok(medium)
 }
 
-/// The density grid in the `.vol` file `file` names, over `bounds` or the file's own box.
-fn density(
+/// The `.vol` grid the key `file` names (of at most `channels` channels), and its path.
+fn grid_file(
     ctx: &mut Context,
     file: &Spanned<String>,
-    bounds: &Option<Spanned<[Point; 2]>>,
-) -> Result<DensityGrid, LoadError> {
+    channels: usize,
+) -> Result<(crate::vol::VolGrid, std::path::PathBuf), LoadError> {
     let path = ctx.path(file.get_ref(), file.span())?;
     let bytes = crate::input::read(&path).map_err(|e| {
         ctx.source
@@ -141,6 +159,25 @@ fn density(
     })?;
     ctx.inputs.add(&bytes);
     let vol = crate::vol::parse_vol(&path, &bytes)?;
+    if vol.channels > channels {
+        let message = format!(
+            "grid file `{}` has {} channels; a density grid has 1",
+            path.display(),
+            vol.channels
+        );
+        return Err(ctx.source.error(file.span(), message));
+    }
+    Ok((vol, path))
+}
+
+/// Where the grids go: the box `bounds` gives, or else the one the density file `vol` (which
+/// the key `file` names) gives.
+fn placement(
+    ctx: &Context,
+    bounds: &Option<Spanned<[Point; 2]>>,
+    vol: &crate::vol::VolGrid,
+    file: &Spanned<String>,
+) -> Result<Affine3A, LoadError> {
     let (min, max, span) = match bounds {
         Some(b) => {
             let [lo, hi] = b.get_ref();
@@ -163,7 +200,10 @@ fn density(
             format!("{whose} must have min < max on every axis, got {min} and {max}"),
         ));
     }
-    let to_world = Affine3A::from_scale_rotation_translation(max - min, Quat::IDENTITY, min);
-    DensityGrid::new(vol.res, vol.values, to_world)
-        .map_err(|e| LoadError::file(&path, format!("volume grid: {e}")))
+    let scale = max - min;
+    Ok(Affine3A::from_scale_rotation_translation(
+        scale,
+        Quat::IDENTITY,
+        min,
+    ))
 }

@@ -37,7 +37,12 @@ pub struct MediumDesc {
     /// to the scene file.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<Spanned<String>>,
-    /// The box `[min, max]` the density grid spans (default: the box its file gives).
+    /// A heterogeneous medium's albedo at each point: a `.vol` file of one or three channels
+    /// (each in [0, 1]) over the same box as `density`; it replaces `albedo` (or the share of
+    /// `sigma_s` in `sigma_a + sigma_s`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub albedo_grid: Option<Spanned<String>>,
+    /// The box `[min, max]` the grids span (default: the box the density file gives).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bounds: Option<Spanned<[Point; 2]>>,
 }
@@ -54,6 +59,7 @@ impl MediumDesc {
             scale: None,
             g: None,
             density: None,
+            albedo_grid: None,
             bounds: None,
         }
     }

@@ -4,14 +4,15 @@
 //! | --- | --- |
 //! | `homogeneous` (`sigma_t`, default 1; `albedo`, default 0.75; `scale`, default 1) | `sigma_t`, `albedo`, `scale` |
 //! | `heterogeneous`: `sigma_t` a `gridvolume` (`filename`, `to_world`: the unit cube's place) | `density` (the file), `bounds` |
+//! | `heterogeneous`: `albedo` a `gridvolume` (1 or 3 channels) over the same box | `albedo_grid` |
 //! | a `constvolume`'s `value` for `sigma_t` or `albedo` | that constant |
 //! | `<phase type="isotropic">`, `<phase type="hg">` (`g`, default 0.8), none: isotropic | `g` |
 //! | a shape's `<medium name="interior">` / `name="exterior"` (nested or `<ref>`) | the object's `interior`, `exterior` |
 //! | a sensor's `<medium>` | the camera's `medium` |
 //!
 //! A grid's `to_world` must scale and move the unit cube without turning it (a box in the
-//! scene's axes), and `use_grid_bbox` places it at the box its file gives. An albedo grid, a
-//! `nearest` filter and a grid of `sigma_t` in a `homogeneous` medium are refused. Outside its
+//! scene's axes), and `use_grid_bbox` places it at the box its file gives. An albedo grid elsewhere
+//! than the `sigma_t` grid, a `nearest` filter and grids in a `homogeneous` medium are refused. Outside its
 //! box a grid's density is 0 in lucent, where Mitsuba clamps its edge values outward: the same
 //! wherever the bounding shape lies within the box. `sample_emitters` is not read: lucent
 //! always samples the lights; nor are the majorant settings, which change only noise.
@@ -65,6 +66,7 @@ pub fn named<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<String, LoadEr
     if !given("albedo") {
         albedo = p.color_or("albedo", 0.75)?;
     }
+    let mut albedo_grid = None;
     for v in volumes {
         match v.name {
             Some("sigma_t") => match volume(cx, v, p.kind == "heterogeneous")? {
@@ -74,9 +76,9 @@ pub fn named<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<String, LoadEr
                     m.bounds = bounds.map(|b| Spanned::new(0..0, b));
                 }
             },
-            Some("albedo") => match volume(cx, v, false)? {
+            Some("albedo") => match volume(cx, v, p.kind == "heterogeneous")? {
                 Volume::Constant(c) => albedo = c,
-                Volume::Grid(..) => unreachable!("refused by `volume`"),
+                Volume::Grid(file, bounds) => albedo_grid = Some((file, bounds, v.at)),
             },
             _ => {
                 return Err(v.at.error(format!(
@@ -85,6 +87,19 @@ pub fn named<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<String, LoadEr
                 )));
             }
         }
+    }
+    if let Some((file, bounds, at)) = albedo_grid {
+        if m.density.is_none() {
+            return Err(
+                at.error("an albedo grid needs a `sigma_t` grid (lucent reads both or the latter)")
+            );
+        }
+        if bounds != m.bounds.as_ref().map(|b| *b.get_ref()) {
+            return Err(at.error(
+                "the albedo grid must span the same box as the `sigma_t` grid (the same `to_world`)",
+            ));
+        }
+        m.albedo_grid = Some(Spanned::new(0..0, file));
     }
     m.sigma_t = color(sigma_t);
     if albedo.max_channel() > 1.0 {
@@ -149,7 +164,7 @@ fn volume<'a>(cx: &mut Convert<'a>, v: Child<'a>, grid_allowed: bool) -> Result<
         "constvolume" => Volume::Constant(g.color_or("value", 1.0)?),
         "gridvolume" if !grid_allowed => {
             return Err(v.at.error(format!(
-                "a grid of `{}` is not read: lucent reads a `heterogeneous` medium's `sigma_t` grid",
+                "a grid of `{}` is not read: lucent reads a `heterogeneous` medium's grids",
                 v.name.unwrap_or("")
             )));
         }

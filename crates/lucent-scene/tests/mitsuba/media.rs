@@ -101,9 +101,9 @@ fn media_lucent_cannot_read_are_refused_at_their_place() {
             "unknown phase type `rayleigh`",
         ),
         (
-            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="albedo"/></medium></shape>"#,
+            r#"    <shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="albedo"><string name="filename" value="g.vol"/></volume></medium></shape>"#,
             "<volume",
-            "a grid of `albedo` is not read",
+            "an albedo grid needs a `sigma_t` grid",
         ),
         (
             r#"    <shape type="sphere"><medium type="homogeneous" name="interior"><volume type="gridvolume" name="sigma_t"/></medium></shape>"#,
@@ -143,6 +143,7 @@ fn media_lucent_cannot_read_are_refused_at_their_place() {
 fn grid() -> lucent_scene::vol::VolGrid {
     lucent_scene::vol::VolGrid {
         res: [2, 3, 4],
+        channels: 1,
         values: (0..24).map(|i| i as f32 / 10.0).collect(),
         bounds: (glam::Vec3::ZERO, glam::Vec3::ONE),
     }
@@ -195,4 +196,51 @@ fn a_heterogeneous_medium_reads_its_grid_and_where_it_lies() {
         let got = density.density(glam::Vec3::new(0.5, y, 2.25));
         assert!((got - want).abs() < 1e-5, "at y {y}: {got} not {want}");
     }
+}
+
+#[test]
+fn an_albedo_grid_is_read_over_the_density_grids_box_and_refused_elsewhere() {
+    let dir = Dir::new("media-albedo-grid");
+    dir.write("g.vol", lucent_scene::vol::write_vol(&grid()));
+    let rgb = lucent_scene::vol::VolGrid {
+        channels: 3,
+        values: (0..72).map(|i| (i % 10) as f32 / 10.0).collect(),
+        ..grid()
+    };
+    dir.write("a.vol", lucent_scene::vol::write_vol(&rgb));
+    let medium = |albedo_to_world: &str| {
+        scene(&format!(
+            r#"    <integrator type="volpath"/>
+    <shape type="cube">
+        <bsdf type="null"/>
+        <medium type="heterogeneous" name="interior">
+            <volume name="sigma_t" type="gridvolume">
+                <string name="filename" value="g.vol"/>
+                <transform name="to_world"><scale value="2"/></transform>
+            </volume>
+            <volume name="albedo" type="gridvolume">
+                <string name="filename" value="a.vol"/>
+                <transform name="to_world">{albedo_to_world}</transform>
+            </volume>
+        </medium>
+    </shape>"#
+        ))
+    };
+    let path = dir.write("same.xml", medium(r#"<scale value="2"/>"#));
+    let imported = import(&path);
+    let o = objects(&imported)[0];
+    let m = self::medium(&imported, o.interior.as_ref().unwrap().get_ref());
+    assert_eq!(m.albedo_grid.as_ref().unwrap().get_ref(), "a.vol");
+    let (_, loaded) = load(&path);
+    let built = loaded.scene.medium(0);
+    assert!(built.albedo_grid.is_some() && built.density.is_some());
+    let text = medium(r#"<scale value="3"/>"#);
+    let path = dir.write("elsewhere.xml", &text);
+    let e = import_error(&path, &open());
+    assert_error(
+        &e,
+        &path,
+        position(&text, r#"<volume name="albedo""#),
+        "the same box",
+    );
 }

@@ -41,9 +41,8 @@ impl Fog {
         let Some(m) = medium else {
             return;
         };
-        let m = scene.medium(m);
-        let tr = m.transmittance_quadrature((ray.origin, ray.dir), len);
-        self.glow += self.tr * m.albedo() * (Rgb::WHITE - tr) * scene.ambient;
+        let (tr, scattered) = scene.medium(m).fog_along((ray.origin, ray.dir), len);
+        self.glow += self.tr * scattered * scene.ambient;
         self.tr *= tr;
     }
 
@@ -112,9 +111,7 @@ pub(super) fn shadow(
             .filter(|h| h.t < distance);
         if let Some(m) = medium {
             let len = hit.as_ref().map_or(distance, |h| h.t);
-            s *= scene
-                .medium(m)
-                .transmittance_quadrature((ray.origin, ray.dir), len);
+            s *= scene.medium(m).fog_along((ray.origin, ray.dir), len).0;
         }
         let Some(hit) = hit else {
             return s;

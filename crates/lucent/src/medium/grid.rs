@@ -17,7 +17,7 @@ use thiserror::Error;
 /// Voxels per majorant cell along each axis (fewer where the grid is smaller).
 const VOXELS_PER_CELL: usize = 8;
 
-/// Midpoint-rule points per majorant cell in [`DensityGrid::integral`].
+/// Midpoint-rule points per majorant cell in [`DensityGrid::quadrature`].
 const QUADRATURE_STEPS: usize = 2 * VOXELS_PER_CELL;
 
 /// The most voxels a grid may hold (4 GiB of `f32`): a bound on memory that a header cannot
@@ -39,6 +39,18 @@ pub enum GridError {
         needed: usize,
         /// How many were given.
         got: usize,
+    },
+    /// An albedo is outside [0, 1] or NaN.
+    #[error("voxel ({x}, {y}, {z}) holds albedo {value}: albedos lie in [0, 1]")]
+    Albedo {
+        /// Its position.
+        x: usize,
+        /// Its position.
+        y: usize,
+        /// Its position.
+        z: usize,
+        /// What it holds (the first bad channel).
+        value: f32,
     },
     /// A density is negative, NaN or infinite.
     #[error("voxel ({x}, {y}, {z}) holds {value}: densities must be finite and at least 0")]
@@ -79,30 +91,15 @@ impl DensityGrid {
     /// A grid of `res` voxels holding `values` (`x` fastest), spanning the box that
     /// `to_world` makes of the unit cube.
     pub fn new(res: [usize; 3], values: Vec<f32>, to_world: Affine3A) -> Result<Self, GridError> {
-        let needed = res
-            .iter()
-            .try_fold(1usize, |n, &r| n.checked_mul(r))
-            .filter(|&n| n > 0 && n <= MAX_VOXELS)
-            .ok_or(GridError::Size(res))?;
-        if values.len() != needed {
-            return Err(GridError::Count {
-                res,
-                needed,
-                got: values.len(),
-            });
-        }
+        check_layout(res, values.len(), to_world)?;
         if let Some(i) = values.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
-            let (x, y, z) = (i % res[0], i / res[0] % res[1], i / (res[0] * res[1]));
+            let [x, y, z] = voxel(res, i);
             return Err(GridError::Value {
                 x,
                 y,
                 z,
                 value: values[i],
             });
-        }
-        let det = to_world.matrix3.determinant();
-        if !(det.is_finite() && det != 0.0 && to_world.translation.is_finite()) {
-            return Err(GridError::Box);
         }
         let majorants = Majorants::of(res, &values);
         Ok(Self {
@@ -133,45 +130,30 @@ impl DensityGrid {
         if !(u.cmpge(Vec3::ZERO).all() && u.cmple(Vec3::ONE).all()) {
             return 0.0;
         }
-        let mut i0 = [0usize; 3];
-        let mut f = [0f32; 3];
-        for a in 0..3 {
-            let n = self.res[a];
-            let x = (u[a] * n as f32 - 0.5).clamp(0.0, (n - 1) as f32);
-            i0[a] = (x as usize).min(n.saturating_sub(2));
-            f[a] = x - i0[a] as f32;
-        }
-        let step = |a: usize| usize::from(self.res[a] > 1);
-        let (sx, sy, sz) = (
-            step(0),
-            step(1) * self.res[0],
-            step(2) * self.res[0] * self.res[1],
-        );
-        let base = i0[0] + self.res[0] * (i0[1] + self.res[1] * i0[2]);
-        let v = |o: usize| self.values[base + o];
-        let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
-        let x00 = lerp(v(0), v(sx), f[0]);
-        let x10 = lerp(v(sy), v(sx + sy), f[0]);
-        let x01 = lerp(v(sz), v(sx + sz), f[0]);
-        let x11 = lerp(v(sy + sz), v(sx + sy + sz), f[0]);
-        lerp(lerp(x00, x10, f[1]), lerp(x01, x11, f[1]), f[2])
+        trilinear(self.res, &self.values, u)
     }
 
-    /// `∫ density` along `origin + t·dir` over `[0, end]`, by the midpoint rule at
-    /// [`QUADRATURE_STEPS`] points per majorant cell (two per voxel across a cell): a
-    /// deterministic estimate, for integrators that want no noise.
-    pub fn integral(&self, origin: Vec3, dir: Vec3, end: f32) -> f32 {
-        let mut sum = 0.0;
+    /// The midpoint rule along `origin + t·dir` over `[0, end]`: `visit(point, h, density)`
+    /// for each of [`QUADRATURE_STEPS`] points per majorant cell the ray crosses (two per
+    /// voxel across a cell), in order, `h` the length each stands for; cells whose bound is 0
+    /// are skipped. A deterministic estimate, for integrators that want no noise.
+    pub fn quadrature(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        end: f32,
+        mut visit: impl FnMut(Vec3, f32, f32),
+    ) {
         for cell in self.walk(origin, dir, 0.0, end) {
             if cell.majorant <= 0.0 {
                 continue;
             }
             let h = (cell.t1 - cell.t0) / QUADRATURE_STEPS as f32;
             for k in 0..QUADRATURE_STEPS {
-                sum += self.density(origin + dir * (cell.t0 + (k as f32 + 0.5) * h)) * h;
+                let p = origin + dir * (cell.t0 + (k as f32 + 0.5) * h);
+                visit(p, h, self.density(p));
             }
         }
-        sum
     }
 
     /// The stretches of the ray `origin + t·dir` within `[t0, t1]` that cross the grid's
@@ -225,6 +207,67 @@ impl DensityGrid {
         }
         walk
     }
+}
+
+/// Checks that `count` values fill a grid of `res` voxels, and that `to_world` makes a box of
+/// the unit cube.
+pub(super) fn check_layout(
+    res: [usize; 3],
+    count: usize,
+    to_world: Affine3A,
+) -> Result<(), GridError> {
+    let needed = res
+        .iter()
+        .try_fold(1usize, |n, &r| n.checked_mul(r))
+        .filter(|&n| n > 0 && n <= MAX_VOXELS)
+        .ok_or(GridError::Size(res))?;
+    if count != needed {
+        return Err(GridError::Count {
+            res,
+            needed,
+            got: count,
+        });
+    }
+    let det = to_world.matrix3.determinant();
+    if !(det.is_finite() && det != 0.0 && to_world.translation.is_finite()) {
+        return Err(GridError::Box);
+    }
+    Ok(())
+}
+
+/// The position of value `i` in a grid of `res` voxels (`x` fastest).
+pub(super) fn voxel(res: [usize; 3], i: usize) -> [usize; 3] {
+    [i % res[0], i / res[0] % res[1], i / (res[0] * res[1])]
+}
+
+/// The trilinear interpolation at `u` (in the unit cube, clamped to it) of `values` over a
+/// grid of `res` voxels, each at its cell's centre; the nearest centre's value within half a
+/// voxel of the faces.
+pub(super) fn trilinear<T>(res: [usize; 3], values: &[T], u: Vec3) -> T
+where
+    T: Copy
+        + std::ops::Add<Output = T>
+        + std::ops::Sub<Output = T>
+        + std::ops::Mul<f32, Output = T>,
+{
+    let mut i0 = [0usize; 3];
+    let mut f = [0f32; 3];
+    for a in 0..3 {
+        let n = res[a];
+        let x = (u[a].clamp(0.0, 1.0) * n as f32 - 0.5).clamp(0.0, (n - 1) as f32);
+        i0[a] = (x as usize).min(n.saturating_sub(2));
+        f[a] = x - i0[a] as f32;
+    }
+    let step = |a: usize| usize::from(res[a] > 1);
+    let (sx, sy, sz) = (step(0), step(1) * res[0], step(2) * res[0] * res[1]);
+    let base = i0[0] + res[0] * (i0[1] + res[1] * i0[2]);
+    let v = |o: usize| values[base + o];
+    let lerp = |a: T, b: T, t: f32| a + (b - a) * t;
+    let x00 = lerp(v(0), v(sx), f[0]);
+    let x10 = lerp(v(sy), v(sx + sy), f[0]);
+    let x01 = lerp(v(sz), v(sx + sz), f[0]);
+    let x11 = lerp(v(sy + sz), v(sx + sy + sz), f[0]);
+    lerp(lerp(x00, x10, f[1]), lerp(x01, x11, f[1]), f[2])
 }
 
 impl Majorants {

@@ -1,5 +1,5 @@
 use super::grid::{DensityGrid, GridError};
-use super::{Interaction, Medium};
+use super::{AlbedoGrid, Interaction, Medium};
 use crate::Rgb;
 use crate::sampling::Rng;
 use glam::{Affine3A, Quat, Vec3};
@@ -235,4 +235,110 @@ fn grids_that_lie_are_refused() {
         DensityGrid::new([2, 2, 2], vec![1.0; 8], flat),
         Err(GridError::Box)
     );
+}
+
+/// A medium of density 2 over `[0, 2]` in x (the unit square across) whose albedo rises
+/// along x as `0.2 + 0.3·x` at the voxel centres, per channel scaled by `tint`.
+fn sooty(tint: Rgb) -> (Medium, impl Fn(f32) -> Rgb) {
+    let n = 8;
+    let to_world = Affine3A::from_scale(Vec3::new(2.0, 1.0, 1.0));
+    let density = DensityGrid::new([2, 1, 1], vec![2.0; 2], to_world).unwrap();
+    let centre = move |i: usize| (i as f32 + 0.5) / n as f32 * 2.0;
+    let a = move |x: f32| tint * (0.2 + 0.3 * x.clamp(centre(0), centre(n - 1)));
+    let values = (0..n).map(|i| a(centre(i))).collect();
+    let albedo = AlbedoGrid::new([n, 1, 1], values, to_world).unwrap();
+    let m = Medium::new(Rgb::new(0.5, 1.0, 2.0), Rgb::BLACK, 0.0)
+        .with_density(Arc::new(density))
+        .with_albedo(Arc::new(albedo));
+    (m, a)
+}
+
+/// `∫₀^end σt·ρ·albedo(t)·Tr(t) dt` per channel for [`sooty`], in f64 by the midpoint rule.
+fn sooty_scattered(m: &Medium, albedo: &impl Fn(f32) -> Rgb, end: f32) -> [f64; 3] {
+    let steps = 20_000;
+    let h = f64::from(end) / steps as f64;
+    let st = m.sigma_t().to_array();
+    std::array::from_fn(|c| {
+        (0..steps)
+            .map(|i| {
+                let t = (i as f64 + 0.5) * h;
+                let s = f64::from(st[c]) * 2.0;
+                s * f64::from(albedo(t as f32).to_array()[c]) * (-s * t).exp() * h
+            })
+            .sum()
+    })
+}
+
+#[test]
+fn an_albedo_grid_weighs_each_scattering_by_its_own_albedo() {
+    let tint = Rgb::new(1.0, 0.8, 0.5);
+    let (m, albedo) = sooty(tint);
+    let end = 1.7;
+    let want = sooty_scattered(&m, &albedo, end);
+    let mut rng = Rng::new(21);
+    let samples = 60_000;
+    let mut sum = [0f64; 3];
+    for hero in 0..3 {
+        for j in 0..samples {
+            let u = (j as f32 + 0.5) / samples as f32;
+            let ray = (Vec3::new(0.0, 0.5, 0.5), Vec3::X);
+            if let Interaction::Scatter { weight, ratio, .. } =
+                m.sample_along(ray, end, hero, u, &mut rng)
+            {
+                for (s, c) in sum.iter_mut().zip((weight / ratio.mean()).to_array()) {
+                    *s += f64::from(c);
+                }
+            }
+        }
+    }
+    for c in 0..3 {
+        let got = sum[c] / (3 * samples) as f64;
+        assert!(
+            (got - want[c]).abs() < 5e-3,
+            "channel {c}: {got} against {}",
+            want[c]
+        );
+    }
+    // Whitted's quadrature of the same integral, without noise.
+    let (tr, scattered) = m.fog_along((Vec3::new(0.0, 0.5, 0.5), Vec3::X), end);
+    let channels = scattered
+        .to_array()
+        .into_iter()
+        .zip(tr.to_array())
+        .zip(want);
+    for (c, ((got, tr), want)) in channels.enumerate() {
+        let got = f64::from(got);
+        assert!(
+            (got - want).abs() < 2e-3,
+            "quadrature, channel {c}: {got} against {want}"
+        );
+        let want_tr = (-f64::from(m.sigma_t().to_array()[c]) * 2.0 * f64::from(end)).exp();
+        assert!((f64::from(tr) - want_tr).abs() < 1e-4);
+    }
+}
+
+#[test]
+fn albedo_grids_out_of_range_are_refused() {
+    let id = Affine3A::IDENTITY;
+    let mut v = vec![Rgb::gray(0.5); 8];
+    v[3] = Rgb::new(0.2, 1.5, 0.1);
+    assert_eq!(
+        AlbedoGrid::new([2, 2, 2], v.clone(), id),
+        Err(GridError::Albedo {
+            x: 1,
+            y: 1,
+            z: 0,
+            value: 1.5
+        })
+    );
+    v[3] = Rgb::new(f32::NAN, 0.5, 0.5);
+    assert!(matches!(
+        AlbedoGrid::new([2, 2, 2], v, id),
+        Err(GridError::Albedo {
+            x: 1,
+            y: 1,
+            z: 0,
+            ..
+        })
+    ));
 }

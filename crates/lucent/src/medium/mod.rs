@@ -20,10 +20,12 @@
 //! rare. [`Interaction`] gives both factors a distance sample contributes: the throughput's
 //! (`f/p_hero`) and the channels' densities relative to the hero's (`p_c/p_hero`).
 
+pub mod albedo_grid;
 pub mod grid;
 pub mod phase;
 mod track;
 
+pub use albedo_grid::AlbedoGrid;
 pub use grid::DensityGrid;
 pub use phase::HenyeyGreenstein;
 
@@ -44,6 +46,9 @@ pub struct Medium {
     pub phase: HenyeyGreenstein,
     /// The density at each point, if the medium is heterogeneous.
     pub density: Option<Arc<DensityGrid>>,
+    /// The albedo at each point, if it varies: then `σs = σt·albedo(x)` there, whatever
+    /// `sigma_a` and `sigma_s` divide `σt` into.
+    pub albedo_grid: Option<Arc<AlbedoGrid>>,
 }
 
 /// Which media lie on either side of an object's surface (indices into the scene's media).
@@ -111,6 +116,29 @@ impl Medium {
             sigma_s,
             phase: HenyeyGreenstein::new(g),
             density: None,
+            albedo_grid: None,
+        }
+    }
+
+    /// This medium with its albedo varying as `grid` says (its extinction unchanged); for a
+    /// heterogeneous medium only (a homogeneous one's albedo is its own).
+    pub fn with_albedo(self, grid: Arc<AlbedoGrid>) -> Self {
+        Self {
+            albedo_grid: Some(grid),
+            ..self
+        }
+    }
+
+    /// Whether it scatters anywhere (else it only absorbs).
+    pub fn scatters(&self) -> bool {
+        self.albedo_grid.is_some() || !self.sigma_s.is_black()
+    }
+
+    /// The scattering coefficient at `p` (at density 1 in a heterogeneous medium).
+    pub fn sigma_s_at(&self, p: Vec3) -> Rgb {
+        match &self.albedo_grid {
+            None => self.sigma_s,
+            Some(grid) => self.sigma_t() * grid.albedo(p),
         }
     }
 
@@ -150,16 +178,27 @@ impl Medium {
         }
     }
 
-    /// The transmittance along `origin + t·dir` (unit `dir`) over `[0, end]` without noise:
-    /// exact in a homogeneous medium, by quadrature through a grid ([`DensityGrid::integral`]).
-    pub fn transmittance_quadrature(&self, (origin, dir): (Vec3, Vec3), end: f32) -> Rgb {
-        match &self.density {
-            None => self.transmittance(end),
-            Some(grid) => {
-                let depth = grid.integral(origin, dir, end);
-                self.sigma_t().map(|s| transmit(s, depth))
-            }
-        }
+    /// What a stretch `[0, end]` of `origin + t·dir` (unit `dir`) in the medium does, without
+    /// noise: its transmittance, and the share `∫ Tr(t)·σs(t) dt` of light it scatters towards
+    /// the origin from a uniform radiance 1. Exact in a homogeneous medium (the share is then
+    /// `albedo·(1 − Tr)`); by the midpoint rule through a grid ([`DensityGrid::quadrature`]).
+    pub fn fog_along(&self, (origin, dir): (Vec3, Vec3), end: f32) -> (Rgb, Rgb) {
+        let Some(grid) = &self.density else {
+            let tr = self.transmittance(end);
+            return (tr, self.albedo() * (Rgb::WHITE - tr));
+        };
+        let st = self.sigma_t();
+        let (mut tr, mut scattered) = (Rgb::WHITE, Rgb::BLACK);
+        grid.quadrature(origin, dir, end, |p, h, density| {
+            let step = st.map(|s| transmit(s, density * h));
+            let albedo = match &self.albedo_grid {
+                None => self.albedo(),
+                Some(g) => g.albedo(p),
+            };
+            scattered += tr * albedo * (Rgb::WHITE - step);
+            tr *= step;
+        });
+        (tr, scattered)
     }
 
     /// The single-scattering albedo `σs/σt` per channel (0 where nothing is taken out).

@@ -35,7 +35,7 @@ pub(super) fn sample_distance(
     u: f32,
     rng: &mut Rng,
 ) -> Interaction {
-    if m.sigma_s.is_black() {
+    if !m.scatters() {
         return Interaction::Pass {
             weight: transmittance(m, grid, (origin, dir), end, rng),
             ratio: Rgb::WHITE,
@@ -73,13 +73,14 @@ pub(super) fn sample_distance(
                 break;
             }
             t += step;
-            let density = grid.density(origin + dir * t);
+            let at = origin + dir * t;
+            let density = grid.density(at);
             // A collision of either kind has, per channel, the density of the hero's times
             // `tr·σt / (tr_hero·σt_hero)`; a real one contributes `tr·σs`, a null one `tr·σn`,
             // and σn is σt's multiple `1 − density / majorant` in every channel.
             let ratio = acc * tr * st / (tr_hero * s_hero);
             if rng.f32() * cell.majorant < density {
-                let weight = acc * tr * m.sigma_s / (tr_hero * s_hero);
+                let weight = acc * tr * m.sigma_s_at(at) / (tr_hero * s_hero);
                 return Interaction::Scatter { t, weight, ratio };
             }
             acc = normalised(ratio);

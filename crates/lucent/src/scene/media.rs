@@ -16,6 +16,12 @@ pub enum MediaError {
         /// Which coefficient.
         what: &'static str,
     },
+    /// An albedo grid without a density grid.
+    #[error("medium {medium}: an albedo grid needs a density grid")]
+    AlbedoWithoutDensity {
+        /// The medium's index.
+        medium: u32,
+    },
     /// An object or the camera names a medium that does not exist.
     #[error("{user} names medium {medium}, but the scene has {count} media")]
     NoSuchMedium {
@@ -76,6 +82,9 @@ impl SceneMedia {
     /// Checks the coefficients and every index, for a scene of `objects` objects.
     pub(super) fn check(&self, objects: u32) -> Result<(), MediaError> {
         for (i, m) in self.media.iter().enumerate() {
+            if m.albedo_grid.is_some() && m.density.is_none() {
+                return Err(MediaError::AlbedoWithoutDensity { medium: i as u32 });
+            }
             for (what, c) in [("sigma_a", m.sigma_a), ("sigma_s", m.sigma_s)] {
                 if !c.is_finite() || c.to_array().iter().any(|&x| x < 0.0) {
                     return Err(MediaError::BadCoefficient {
