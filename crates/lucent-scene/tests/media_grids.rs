@@ -35,6 +35,15 @@ fn load(dir: &Path, text: &str) -> Result<Loaded, LoadError> {
     SceneFile::parse(dir.join("grids.toml"), dir.to_path_buf(), text.to_string())?.build()
 }
 
+/// The one pixel of the scene in `text`.
+fn pixel(dir: &Path, text: &str) -> [f32; 3] {
+    let loaded = load(dir, text).unwrap();
+    let film = render(&loaded.scene, &loaded.settings, None, &Hooks::none())
+        .unwrap()
+        .film;
+    film.pixel(0, 0).to_array()
+}
+
 /// A grid of `n` voxels along z over `bounds`, whose centres hold `a + b·z`.
 fn ramp(n: usize, (lo, hi): (Vec3, Vec3), (a, b): (f32, f32)) -> VolGrid {
     let values = (0..n)
@@ -79,11 +88,7 @@ fn an_absorbing_grid_dims_by_its_optical_depth() {
     );
     // Whitted's ray tracer integrates the grid by quadrature: no noise, a tighter bound.
     let whitted = from_file.replace("integrator = \"path\"", "integrator = \"whitted\"");
-    let loaded = load(&dir.0, &whitted).unwrap();
-    let film = render(&loaded.scene, &loaded.settings, None, &Hooks::none())
-        .unwrap()
-        .film;
-    let got = film.pixel(0, 0).to_array();
+    let got = pixel(&dir.0, &whitted);
     for c in 0..3 {
         let want = (-sigma_a[c]).exp();
         assert!(
@@ -93,11 +98,7 @@ fn an_absorbing_grid_dims_by_its_optical_depth() {
         );
     }
     for text in [from_file, by_bounds] {
-        let loaded = load(&dir.0, &text).unwrap();
-        let film = render(&loaded.scene, &loaded.settings, None, &Hooks::none())
-            .unwrap()
-            .film;
-        let got = film.pixel(0, 0).to_array();
+        let got = pixel(&dir.0, &text);
         for c in 0..3 {
             let want = (-sigma_a[c]).exp();
             assert!(
