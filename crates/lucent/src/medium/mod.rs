@@ -6,6 +6,12 @@
 //! distance `d` keeps the share `Tr(d) = exp(−σt·d)` (Beer–Lambert), and at each point the
 //! share `σs/σt` of what is taken out is scattered into new directions by the phase function.
 //!
+//! A *heterogeneous* medium scales its coefficients at every point by a grid's density
+//! ([`grid`]), and may take its albedo `σs/σt` from a grid too ([`albedo_grid`]); distances
+//! through it are drawn by delta tracking and its transmittance estimated by ratio tracking
+//! (`track.rs`), or integrated by quadrature where no noise is wanted
+//! ([`Medium::fog_along`]).
+//!
 //! Where a ray is: every object may carry a [`MediumInterface`], the medium on its inside and
 //! on its outside (the side its geometric normal points to); a ray that crosses the surface
 //! enters the one on the side it goes to. The camera sits in the scene's own medium (fog), or
