@@ -152,12 +152,7 @@ fn grid_file(
     file: &Spanned<String>,
     channels: usize,
 ) -> Result<(crate::vol::VolGrid, std::path::PathBuf), LoadError> {
-    let path = ctx.path(file.get_ref(), file.span())?;
-    let bytes = crate::input::read(&path).map_err(|e| {
-        ctx.source
-            .error(file.span(), format!("grid file `{}`: {e}", path.display()))
-    })?;
-    ctx.inputs.add(&bytes);
+    let (path, bytes) = ctx.read_named(file, "grid file")?;
     let vol = crate::vol::parse_vol(&path, &bytes)?;
     if vol.channels > channels {
         let message = format!(

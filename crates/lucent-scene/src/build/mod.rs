@@ -122,6 +122,22 @@ impl Context<'_> {
             .map_err(|e| self.source.error(span, e))
     }
 
+    /// The path and bytes of the file the key `file` names (a `what` file: "IES file"),
+    /// counted among the scene's inputs; an error at the key when it cannot be read.
+    pub fn read_named(
+        &mut self,
+        file: &Spanned<String>,
+        what: &str,
+    ) -> Result<(PathBuf, Vec<u8>), LoadError> {
+        let path = self.path(file.get_ref(), file.span())?;
+        let bytes = crate::input::read(&path).map_err(|e| {
+            self.source
+                .error(file.span(), format!("{what} `{}`: {e}", path.display()))
+        })?;
+        self.inputs.add(&bytes);
+        Ok((path, bytes))
+    }
+
     /// The scene's index of the image file `name`, decoded by `encoding` and scaled by
     /// `scale`, read once.
     pub fn image(

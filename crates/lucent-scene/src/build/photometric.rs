@@ -21,12 +21,7 @@ pub fn light(
     let d = l.get_ref();
     let kind = d.kind.name();
     let file = required(ctx.source, l.span(), kind, "file", &d.file)?;
-    let path = ctx.path(file.get_ref(), file.span())?;
-    let bytes = crate::input::read(&path).map_err(|e| {
-        ctx.source
-            .error(file.span(), format!("IES file `{}`: {e}", path.display()))
-    })?;
-    ctx.inputs.add(&bytes);
+    let (path, bytes) = ctx.read_named(file, "IES file")?;
     let ies = crate::ies::parse_ies(&path, &String::from_utf8_lossy(&bytes))?;
     let position = ctx.local(
         required(ctx.source, l.span(), kind, "position", &d.position)?

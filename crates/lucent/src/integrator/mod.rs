@@ -6,6 +6,7 @@
 //! draw none). It knows nothing of pixels or threads. To add one: a file with its
 //! settings struct and `radiance`, a variant here, and its name in [`Integrator::name`].
 
+mod crossings;
 pub mod debug;
 pub mod explain;
 pub mod path;

@@ -16,6 +16,7 @@
 //! Depth counts scattering in media as bounces; crossing a null surface is not a bounce. A
 //! scene without media never comes here: its paths are [`PathTracer::radiance`]'s, bit for bit.
 
+use super::crossings::{self, MAX_CROSSINGS};
 use super::path::Path;
 use super::vertex::{Vertex, footprint_of_sample, light_sampled, light_weight, shadow_reach};
 use super::{RayStats, traceable, unless_untraceable};
@@ -31,10 +32,6 @@ use crate::shape::SurfaceHit;
 use crate::spawn::{Leaving, spawn_ray};
 use glam::Vec3;
 use lucent_accel::Ray;
-
-/// The most surfaces a path or a shadow ray crosses without scattering (null boundaries,
-/// cut-outs) before it is ended: a loop of coplanar boundaries cannot hold it forever.
-const MAX_CROSSINGS: u32 = 256;
 
 /// Where a light sample is taken from.
 enum From<'a> {
@@ -266,45 +263,19 @@ fn transmittance(
         (false, Some(m)) => scene
             .medium(m)
             .transmittance_along((ray.origin, ray.dir), t_max, rng),
-        (true, _) => transmittance_across(scene, (ray, from), t_max, medium, rng, stats),
-    }
-}
-
-/// [`transmittance`] by walking every surface along the ray, nearest first.
-fn transmittance_across(
-    scene: &Scene,
-    (mut ray, mut from): (Ray, Option<Leaving>),
-    t_max: f32,
-    mut medium: Option<u32>,
-    rng: &mut Rng,
-    stats: &mut RayStats,
-) -> Rgb {
-    let mut tr = Rgb::WHITE;
-    let mut left = t_max;
-    for _ in 0..MAX_CROSSINGS {
-        let hit = scene.intersect_from(&ray, from, &mut stats.traversal);
-        let stretch = hit.as_ref().map_or(left, |h| h.t.min(left));
-        if let Some(m) = medium {
-            tr *= scene
-                .medium(m)
-                .transmittance_along((ray.origin, ray.dir), stretch, rng);
-            if tr.is_black() {
-                return Rgb::BLACK;
-            }
+        (true, _) => {
+            let stretch = |m, ray: &Ray, len| {
+                (scene.medium(m)).transmittance_along((ray.origin, ray.dir), len, rng)
+            };
+            crossings::through(
+                scene,
+                (ray, from),
+                t_max,
+                medium,
+                stretch,
+                |_| Rgb::BLACK,
+                stats,
+            )
         }
-        let Some(hit) = hit.filter(|h| h.t < left) else {
-            return tr;
-        };
-        if scene.stops(&hit, &ray) {
-            return Rgb::BLACK;
-        }
-        medium = scene
-            .medium_interface(hit.object)
-            .towards(hit.normal, ray.dir, medium);
-        left -= hit.t;
-        let (next, leaving) = spawn_ray(&hit, ray.dir);
-        ray = next;
-        from = Some(leaving);
     }
-    Rgb::BLACK
 }

@@ -28,8 +28,8 @@
 //!   they scatter (POV-Ray's `fog`, from the media's coefficients: see `whitted_media`).
 
 use super::record::{Cut, NoRecord, RayKind, Recorder};
-use super::whitted_media;
 use super::{RayStats, traceable, unless_untraceable};
+use super::{crossings, whitted_media};
 use crate::Rgb;
 use crate::material::Material;
 use crate::optics::{reflect, refract};
@@ -277,6 +277,8 @@ impl Whitted {
         };
         let v = -i;
         let kd = scene.diffuse(m, hit);
+        // The media on either side, for the rays that leave the surface.
+        let interface = scene.medium_interface(hit.object);
 
         let mut color = m.ka * scene.ambient;
         if (entering || m.emits_back) && m.emits() {
@@ -296,14 +298,15 @@ impl Whitted {
             let s = if !self.shadows {
                 Rgb::WHITE
             } else if scene.has_media() {
+                // Through the media and the surfaces between, the media's transmittance.
                 let (ray, from) = spawn_ray(hit, l.to_light);
-                let start =
-                    scene
-                        .medium_interface(hit.object)
-                        .towards(hit.normal, l.to_light, path.medium);
+                let start = interface.towards(hit.normal, l.to_light, path.medium);
                 t.stats.shadow += 1;
-                let factor = |m: u32| shadow_factor(&scene.materials[m as usize], 1);
-                whitted_media::shadow(scene, (ray, Some(from)), l.distance, start, factor, t.stats)
+                let stretch =
+                    |m, ray: &Ray, len| (scene.medium(m)).fog_along((ray.origin, ray.dir), len).0;
+                let blocker = |m: u32| shadow_factor(&scene.materials[m as usize], 1);
+                let ray = (ray, Some(from));
+                crossings::through(scene, ray, l.distance, start, stretch, blocker, t.stats)
             } else {
                 self.shadow(scene, hit, (l.to_light, l.distance), beam, t.stats)
             };
@@ -336,11 +339,7 @@ impl Whitted {
                     if let Some(mut child) = self.child(t, RayKind::Refracted, path, m.kt) {
                         t.stats.refracted += 1;
                         let dir = dir.normalize();
-                        child.medium = scene.medium_interface(hit.object).towards(
-                            hit.normal,
-                            dir,
-                            path.medium,
-                        );
+                        child.medium = interface.towards(hit.normal, dir, path.medium);
                         let (ray, from) = spawn_ray(hit, dir);
                         if traceable(&ray, t.stats) {
                             let it = self.trace(t, RayKind::Refracted, &ray, Some(from), &child);
@@ -361,9 +360,7 @@ impl Whitted {
             t.stats.reflected += 1;
             let r = Some(reflect(i, n)).filter(|r| r.dot(ng) > 0.0);
             let dir = r.unwrap_or_else(|| reflect(i, ng)).normalize();
-            child.medium = scene
-                .medium_interface(hit.object)
-                .towards(hit.normal, dir, path.medium);
+            child.medium = interface.towards(hit.normal, dir, path.medium);
             let (ray, from) = spawn_ray(hit, dir);
             if traceable(&ray, t.stats) {
                 color += kr * self.trace(t, RayKind::Reflected, &ray, Some(from), &child);

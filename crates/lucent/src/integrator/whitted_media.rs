@@ -12,14 +12,12 @@
 //! change medium where they cross an object with media, as under the path tracer.
 
 use super::RayStats;
+use super::crossings::MAX_CROSSINGS;
 use crate::Rgb;
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
 use crate::spawn::{Leaving, spawn_ray};
 use lucent_accel::Ray;
-
-/// The most surfaces a ray crosses without stopping before it is ended.
-const MAX_CROSSINGS: u32 = 256;
 
 /// What the media along a ray do to what it finds: `seen = tr·found + glow`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,43 +90,4 @@ pub(super) fn first_stop(
             glow: fog.glow,
         },
     )
-}
-
-/// The shadow term along `ray` (leaving `from`, starting in `medium`) up to `distance`: each
-/// stopping surface's `shadow_factor` per crossing, times the media's transmittance between.
-pub(super) fn shadow(
-    scene: &Scene,
-    (mut ray, mut from): (Ray, Option<Leaving>),
-    mut distance: f32,
-    mut medium: Option<u32>,
-    shadow_factor: impl Fn(u32) -> Rgb,
-    stats: &mut RayStats,
-) -> Rgb {
-    let mut s = Rgb::WHITE;
-    for _ in 0..MAX_CROSSINGS {
-        let hit = scene
-            .intersect_from(&ray, from, &mut stats.traversal)
-            .filter(|h| h.t < distance);
-        if let Some(m) = medium {
-            let len = hit.as_ref().map_or(distance, |h| h.t);
-            s *= scene.medium(m).fog_along((ray.origin, ray.dir), len).0;
-        }
-        let Some(hit) = hit else {
-            return s;
-        };
-        if scene.stops(&hit, &ray) {
-            s *= shadow_factor(hit.material);
-        }
-        if s.is_black() {
-            return s;
-        }
-        medium = scene
-            .medium_interface(hit.object)
-            .towards(hit.normal, ray.dir, medium);
-        distance -= hit.t;
-        let (next, leaving) = spawn_ray(&hit, ray.dir);
-        ray = next;
-        from = Some(leaving);
-    }
-    Rgb::BLACK
 }

@@ -115,11 +115,6 @@ impl DensityGrid {
         self.res
     }
 
-    /// The largest density anywhere.
-    pub fn max(&self) -> f32 {
-        self.majorants.max.iter().copied().fold(0.0, f32::max)
-    }
-
     /// The density at `p` (in the scene's space).
     pub fn density(&self, p: Vec3) -> f32 {
         self.density_unit(self.to_unit.transform_point3(p))
