@@ -11,6 +11,7 @@ mod motion;
 mod objects;
 mod photometric;
 pub mod shapes;
+mod solids;
 pub mod textures;
 
 use crate::desc::settings::{

@@ -1,5 +1,5 @@
 //! `[[object]]` tables: spheres, planes, triangles, meshes from files, and the unit shapes,
-//! placed by a transform; emitting objects report their surface for area lights.
+//! placed by a transform (the exact solids in `solids.rs`); emitting objects report their surface for area lights.
 
 use super::lights::EmitterSurface;
 use super::{Context, RADIUS_RANGE, check, refuse_keys, required, rescaled, shapes, span};
@@ -54,8 +54,19 @@ pub fn add_object(
         ("motion", span(&d.motion)),
         ("uv_axes", span(&d.uv_axes)),
         ("flip_v", d.flip_v.map(|_| o.span())),
+        ("min", span(&d.min)),
+        ("max", span(&d.max)),
+        ("base", span(&d.base)),
+        ("cap", span(&d.cap)),
+        ("base_radius", span(&d.base_radius)),
+        ("cap_radius", span(&d.cap_radius)),
+        ("open", d.open.map(|_| o.span())),
+        ("hole", span(&d.hole)),
+        ("major", span(&d.major)),
+        ("minor", span(&d.minor)),
     ];
     const PLACED: [&str; 5] = ["flip_normals", "transform", "translate", "rotate", "scale"];
+    const SOLID_PLACED: [&str; 4] = ["transform", "translate", "rotate", "scale"];
     let mut takes: Vec<&str> = match d.kind {
         ObjectKind::Sphere => vec!["center", "radius", "uv_axes"],
         ObjectKind::Plane => vec!["point", "normal"],
@@ -67,6 +78,7 @@ pub fn add_object(
         ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
             PLACED.iter().copied().chain(["flip_v"]).collect()
         }
+        solid => super::solids::keys(solid).chain(SOLID_PLACED).collect(),
     };
     if let (ObjectKind::Plane, Some(m)) = (d.kind, &d.motion) {
         return Err(ctx.source.error(
@@ -82,6 +94,10 @@ pub fn add_object(
     refuse_keys(ctx.source, kind, &others)?;
     let table = o.span();
     let source = ctx.source;
+    if super::solids::is_solid(d.kind) {
+        super::solids::add_solid(ctx, d, table, material, emissive)?;
+        return Ok(None);
+    }
     let motion = moving(ctx, d, glows)?;
     match d.kind {
         ObjectKind::Sphere => {
@@ -189,7 +205,7 @@ pub fn add_object(
             }
             Ok(surface)
         }
-        ObjectKind::Mesh | ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
+        _ => {
             let transform = placement(ctx, d, o.span())?;
             let flipped = d.flip_normals.unwrap_or(false);
             // Read from the path as the scene names it (errors show it so); cached by its
@@ -297,7 +313,11 @@ const MIN_RADIUS_PER_DISTANCE: f32 = 1.0 / 1_048_576.0;
 
 /// The object's placement: `transform`, or scale, then rotate about x, y, z, then translate;
 /// `table` is the object's, for errors.
-fn placement(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<Affine3A, LoadError> {
+pub(super) fn placement(
+    ctx: &Context,
+    d: &ObjectDesc,
+    table: Range<usize>,
+) -> Result<Affine3A, LoadError> {
     if let Some(t) = &d.transform {
         if d.translate.is_some() || d.rotate.is_some() || d.scale.is_some() {
             return Err(ctx.source.error(

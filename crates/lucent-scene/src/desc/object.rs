@@ -22,6 +22,16 @@ pub enum ObjectKind {
     Cube,
     /// The disk of radius 1 in the plane z = 0, facing +z, and a placement.
     Disk,
+    /// A box from `min` to `max` (an exact solid, not triangles), and a placement.
+    Box,
+    /// `base`, `cap`, `radius`, `open`, and a placement.
+    Cylinder,
+    /// `base`, `cap`, `base_radius`, `cap_radius`, `open`, and a placement.
+    Cone,
+    /// `center`, `normal`, `radius`, `hole` (an exact disc), and a placement.
+    Disc,
+    /// `major`, `minor` about the y axis at the origin (POV-Ray's), and a placement.
+    Torus,
 }
 
 impl ObjectKind {
@@ -35,6 +45,11 @@ impl ObjectKind {
             ObjectKind::Rectangle => "rectangle",
             ObjectKind::Cube => "cube",
             ObjectKind::Disk => "disk",
+            ObjectKind::Box => "box",
+            ObjectKind::Cylinder => "cylinder",
+            ObjectKind::Cone => "cone",
+            ObjectKind::Disc => "disc",
+            ObjectKind::Torus => "torus",
         }
     }
 }
@@ -63,6 +78,36 @@ pub struct ObjectDesc {
     /// `[[1, 0, 0], [0, 1, 0], [0, 0, 1]]` turned by their `to_world`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uv_axes: Option<Spanned<[Vector; 3]>>,
+    /// Box: the corner of least coordinates.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min: Option<Spanned<Point>>,
+    /// Box: the corner of greatest coordinates.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max: Option<Spanned<Point>>,
+    /// Cylinder, cone: the centre of the first end.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base: Option<Spanned<Point>>,
+    /// Cylinder, cone: the centre of the other end.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cap: Option<Spanned<Point>>,
+    /// Cone: the radius at `base`, ≥ 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base_radius: Option<Spanned<Finite>>,
+    /// Cone: the radius at `cap`, ≥ 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cap_radius: Option<Spanned<Finite>>,
+    /// Cylinder, cone: without the end caps (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub open: Option<bool>,
+    /// Disc: the radius of a hole about its centre (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hole: Option<Spanned<Finite>>,
+    /// Torus: the radius of the circle the tube follows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub major: Option<Spanned<Finite>>,
+    /// Torus: the tube's radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub minor: Option<Spanned<Finite>>,
     /// Plane: a point on it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub point: Option<Spanned<Point>>,
@@ -122,6 +167,16 @@ impl ObjectDesc {
             center: None,
             radius: None,
             uv_axes: None,
+            min: None,
+            max: None,
+            base: None,
+            cap: None,
+            base_radius: None,
+            cap_radius: None,
+            open: None,
+            hole: None,
+            major: None,
+            minor: None,
             point: None,
             normal: None,
             vertices: None,

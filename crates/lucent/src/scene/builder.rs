@@ -2,7 +2,7 @@
 
 use super::animation::{Animation, moved_sphere};
 use super::{
-    MaterialNeeds, MediaError, Merged, MeshAccel, MeshEntry, ObjectTag, Scene, SceneMedia,
+    MaterialNeeds, Merged, MeshAccel, MeshEntry, ObjectTag, Scene, SceneError, SceneMedia,
 };
 use crate::Rgb;
 use crate::camera::Camera;
@@ -10,7 +10,7 @@ use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
 use crate::material::Material;
 use crate::motion::Motion;
 use crate::shape::{
-    Instance, Mesh, Plane, Primitive, Sphere, SphereMap, Transform, TriangleTest, triangle,
+    Instance, Mesh, Plane, Primitive, Solid, Sphere, SphereMap, Transform, TriangleTest, triangle,
 };
 use crate::texture::ImageTexture;
 use crate::texture::image::LatLongTexels;
@@ -18,88 +18,6 @@ use glam::{Affine3A, Vec3};
 use lucent_accel::{Aabb, AccelKind, WideTriangleBvh};
 use std::sync::Arc;
 use std::time::Instant;
-use thiserror::Error;
-
-/// Why a scene cannot be built.
-#[derive(Clone, Debug, Error, PartialEq)]
-pub enum SceneError {
-    /// A shape names a material that does not exist.
-    #[error("object {object} uses material {material}, but the scene has {count} materials")]
-    NoSuchMaterial {
-        /// The object's id.
-        object: u32,
-        /// The material index it gave.
-        material: u32,
-        /// How many materials exist.
-        count: usize,
-    },
-    /// An instance names a mesh that does not exist.
-    #[error("object {object} places mesh {mesh}, but the scene has {count} meshes")]
-    NoSuchMesh {
-        /// The object's id.
-        object: u32,
-        /// The mesh index it gave.
-        mesh: u32,
-        /// How many meshes exist.
-        count: usize,
-    },
-    /// An instance's transform cannot be inverted.
-    #[error("object {0}'s transform is singular (it flattens the mesh) or not finite")]
-    SingularTransform(u32),
-    /// More primitives than indices can address.
-    #[error("the scene has {0} primitives; at most {max} are supported", max = u32::MAX)]
-    TooManyPrimitives(usize),
-    /// A mesh index points past its vertex array.
-    #[error("mesh {mesh}: triangle {triangle} uses vertex {vertex}, but it has {count}")]
-    VertexOutOfRange {
-        /// The mesh's index.
-        mesh: u32,
-        /// The triangle's index.
-        triangle: usize,
-        /// The bad vertex index.
-        vertex: u32,
-        /// How many vertices exist.
-        count: usize,
-    },
-    /// A mesh's normals, texture coordinates or colours do not match its vertices.
-    #[error("mesh {mesh}: {why}")]
-    BadVertexData {
-        /// The mesh's index.
-        mesh: u32,
-        /// What is wrong.
-        why: String,
-    },
-    /// A motion is given for an object that does not exist.
-    #[error("a motion is given for object {object}, but the scene has {count} objects")]
-    NoSuchObject {
-        /// The object id given.
-        object: u32,
-        /// How many objects exist.
-        count: u32,
-    },
-    /// A motion is given for an infinite plane.
-    #[error("object {0} is an infinite plane, which cannot move")]
-    PlaneCannotMove(u32),
-    /// A motion is given for an object that emits light.
-    #[error(
-        "object {0} emits light and cannot move: the light tables of the path tracer are built once for every instant"
-    )]
-    EmitterCannotMove(u32),
-    /// A sphere's motion scales unevenly.
-    #[error("object {0} is a sphere: its motion must scale alike on every axis")]
-    SphereScaleNotUniform(u32),
-    /// The media are wrong.
-    #[error(transparent)]
-    Media(#[from] MediaError),
-    /// A texture or the environment names an image that does not exist.
-    #[error("image {image} is used, but the scene has {count} images")]
-    NoSuchImage {
-        /// The image index given.
-        image: u32,
-        /// How many images exist.
-        count: usize,
-    },
-}
 
 /// Collects the parts of a scene, then builds it.
 #[derive(Clone, Debug)]
@@ -115,6 +33,7 @@ pub struct SceneBuilder {
     environment_texels: LatLongTexels,
     spheres: Vec<(Sphere, ObjectTag)>,
     sphere_maps: Vec<SphereMap>,
+    pub(super) solids: Vec<(Solid, ObjectTag)>,
     planes: Vec<(Plane, ObjectTag)>,
     meshes: Vec<Mesh>,
     instances: Vec<(u32, Affine3A, ObjectTag)>,
@@ -142,6 +61,7 @@ impl SceneBuilder {
             environment_texels: LatLongTexels::Cells,
             spheres: vec![],
             sphere_maps: vec![],
+            solids: vec![],
             planes: vec![],
             meshes: vec![],
             instances: vec![],
@@ -242,12 +162,26 @@ impl SceneBuilder {
         self
     }
 
-    fn next_tag(&mut self, material: u32) -> ObjectTag {
+    pub(super) fn next_tag(&mut self, material: u32) -> ObjectTag {
         self.objects += 1;
         ObjectTag {
             material,
             object: self.objects - 1,
         }
+    }
+
+    /// Material `i`, if there is one.
+    pub(super) fn material_at(&self, i: u32) -> Option<&Material> {
+        self.materials.get(i as usize)
+    }
+
+    /// The motion given for object `object`, if any.
+    pub(super) fn motion_of(&self, object: u32) -> Option<&Motion> {
+        self.motions
+            .iter()
+            .rev()
+            .find(|(o, _)| *o == object)
+            .map(|(_, m)| m)
     }
 
     /// Adds a sphere; returns its object id.
@@ -351,11 +285,13 @@ impl SceneBuilder {
     }
 
     fn check(&self) -> Result<(), SceneError> {
+        self.check_solids()?;
         let tags = self
             .spheres
             .iter()
             .map(|s| s.1)
-            .chain(self.planes.iter().map(|s| s.1));
+            .chain(self.planes.iter().map(|s| s.1))
+            .chain(self.solids.iter().map(|s| s.1));
         for tag in tags.chain(self.instances.iter().map(|i| i.2)) {
             if tag.material as usize >= self.materials.len() {
                 let count = self.materials.len();
@@ -418,7 +354,7 @@ impl SceneBuilder {
                 return Err(SceneError::NoSuchImage { image, count });
             }
         }
-        let top = self.spheres.len() + self.instances.len();
+        let top = self.spheres.len() + self.instances.len() + self.solids.len();
         if top > u32::MAX as usize {
             return Err(SceneError::TooManyPrimitives(top));
         }
@@ -562,6 +498,10 @@ impl SceneBuilder {
             primitives.push(Primitive::Instance(i as u32));
             boxes.push(world);
         }
+        for (j, (s, _)) in self.solids.iter().enumerate() {
+            primitives.push(Primitive::Solid(j as u32));
+            boxes.push(s.bounds());
+        }
         if let Some(m) = &merged {
             primitives.push(Primitive::Merged);
             boxes.push(m.entry.bounds);
@@ -614,6 +554,7 @@ impl SceneBuilder {
             environment_texels: self.environment_texels,
             spheres: Arc::new(self.spheres),
             sphere_maps: Arc::new(self.sphere_maps),
+            solids: Arc::new(self.solids),
             planes: Arc::new(self.planes),
             meshes: Arc::new(meshes),
             instances: Arc::new(instances),

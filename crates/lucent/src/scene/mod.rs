@@ -21,13 +21,16 @@ mod animation;
 mod beam;
 mod builder;
 mod cutout;
+mod error;
 mod media;
 mod packet;
 mod query;
 mod shutter;
+mod solids;
 
 pub use beam::Beam;
-pub use builder::{SceneBuilder, SceneError};
+pub use builder::SceneBuilder;
+pub use error::SceneError;
 pub use media::{MediaError, SceneMedia};
 pub use shutter::{Shutter, ShutterError};
 
@@ -36,7 +39,7 @@ use crate::camera::Camera;
 use crate::light::{Emitters, Light};
 use crate::material::Material;
 use crate::shape::SurfaceHit;
-use crate::shape::{Instance, Mesh, Plane, Primitive, Sphere, SphereMap, TriangleTest};
+use crate::shape::{Instance, Mesh, Plane, Primitive, Solid, Sphere, SphereMap, TriangleTest};
 use crate::texture::{ImageTexture, TexCoords};
 use animation::{Animation, Moving};
 use lucent_accel::{Aabb, AccelInfo, AccelKind, AnyAccelerator, WideTriangleBvh};
@@ -195,6 +198,8 @@ pub struct Scene {
     spheres: Arc<Vec<(Sphere, ObjectTag)>>,
     /// How each sphere's texture coordinates lie on it (parallel to `spheres`).
     sphere_maps: Arc<Vec<SphereMap>>,
+    /// Boxes, cylinders, cones, discs and tori.
+    solids: Arc<Vec<(Solid, ObjectTag)>>,
     planes: Arc<Vec<(Plane, ObjectTag)>>,
     meshes: Arc<Vec<MeshEntry>>,
     instances: Arc<Vec<(Instance, ObjectTag)>>,
@@ -256,6 +261,8 @@ pub struct SceneCounts {
     pub objects: u32,
     /// Spheres.
     pub spheres: usize,
+    /// Boxes, cylinders, cones, discs and tori.
+    pub solids: usize,
     /// Infinite planes.
     pub planes: usize,
     /// Distinct triangle meshes stored (single triangles included).
@@ -295,6 +302,7 @@ impl Scene {
         SceneCounts {
             objects: self.objects,
             spheres: self.spheres.len(),
+            solids: self.solids.len(),
             planes: self.planes.len(),
             meshes: self.meshes.len(),
             instances: self.instances.len(),
@@ -454,7 +462,8 @@ impl Scene {
         out
     }
 
-    /// Bytes of the geometry itself: vertex and index arrays, spheres, planes, instances.
+    /// Bytes of the geometry itself: vertex and index arrays, spheres, solids, planes,
+    /// instances.
     pub fn geometry_bytes(&self) -> usize {
         let meshes: usize = self
             .meshes
@@ -470,6 +479,7 @@ impl Scene {
         meshes
             + merged
             + self.spheres.len() * size_of::<(Sphere, ObjectTag)>()
+            + self.solids.len() * size_of::<(Solid, ObjectTag)>()
             + self.planes.len() * size_of::<(Plane, ObjectTag)>()
             + self.instances.len() * size_of::<(Instance, ObjectTag)>()
             + self.primitives.len() * size_of::<Primitive>()

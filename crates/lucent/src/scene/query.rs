@@ -14,6 +14,8 @@ use lucent_accel::{Accelerator, Cut, Ray, TraversalStats, WideTriangleBvh};
 pub(super) enum Candidate {
     Plane(u32, f32),
     Sphere(u32, f32),
+    /// Solid, the crossing's `t` as found (in `f64`), and the part of its surface.
+    Solid(u32, f64, u8),
     /// Instance, triangle, hit and vertices in the instance's object space — or in world space
     /// for a merged instance (the last field true).
     Triangle(u32, u32, TriangleHit, [Vec3; 3], bool),
@@ -215,6 +217,12 @@ impl Scene {
                             None => false,
                         }
                     }
+                    Primitive::Solid(j) => match self.solid_hit(j, ray, inclusive(*t_max)) {
+                        Some((t, part)) => {
+                            nearest.offer(t as f32, self.solid_key(j), Candidate::Solid(j, t, part))
+                        }
+                        None => false,
+                    },
                     Primitive::Instance(k) => {
                         let skip = leaving_triangle(from, k);
                         let mut search = MeshSearch {
@@ -442,6 +450,7 @@ impl Scene {
                     error: gamma(6) * (sphere.center.abs() + (point - sphere.center).abs()),
                 }
             }
+            Candidate::Solid(j, t, part) => self.solid_surface(j, ray, t, part),
             Candidate::Triangle(k, tri, hit, v, world) => {
                 let (instance, tag) = &self.instances[k as usize];
                 let mesh = &self.meshes[instance.mesh as usize].mesh;
@@ -629,6 +638,11 @@ impl Scene {
                     None => sphere.crossings(ray, t_max),
                     leaving => u32::from(sphere_hit(sphere, ray, t_max, leaving).is_some()),
                 };
+                crossings > 0 && blocker(tag.material, crossings)
+            }
+            Primitive::Solid(j) => {
+                let (solid, tag) = &self.solids[j as usize];
+                let crossings = solid.crossings(ray, t_max).len() as u32;
                 crossings > 0 && blocker(tag.material, crossings)
             }
             Primitive::Instance(k) => {

@@ -1,4 +1,5 @@
-//! Geometry: spheres, planes, triangles and triangle meshes.
+//! Geometry: spheres, planes, triangles and triangle meshes, and the mathematical solids
+//! ([`solid`]).
 //!
 //! Shapes are flat data in the scene's arrays. Ray queries go through two levels of
 //! accelerators: the top level indexes *primitives* (a sphere, or an instance of a mesh), and
@@ -8,12 +9,14 @@
 pub mod instance;
 pub mod mesh;
 pub mod plane;
+pub mod solid;
 pub mod sphere;
 pub mod triangle;
 
 pub use instance::{Instance, Transform};
 pub use mesh::Mesh;
 pub use plane::Plane;
+pub use solid::{Solid, SolidShape};
 pub use sphere::{Roots, Sphere, SphereMap};
 pub use triangle::{TriangleHit, TriangleTest};
 
@@ -26,6 +29,8 @@ pub enum Primitive {
     Sphere(u32),
     /// `Scene::instances[i]`: a placed mesh, with an accelerator of its own over its triangles.
     Instance(u32),
+    /// `Scene::solids[i]`: a box, cylinder, cone, disc or torus.
+    Solid(u32),
     /// The instances stored together in world space (see the scene's module docs).
     Merged,
 }
@@ -105,6 +110,8 @@ pub enum SurfaceId {
     Plane(u32),
     /// A sphere.
     Sphere(u32),
+    /// A solid (see [`Solid`]).
+    Solid(u32),
     /// Triangle `index` of instance `instance`.
     Triangle {
         /// The instance.

@@ -1,0 +1,225 @@
+//! `[[object]]` tables of the exact solids: box, cylinder, cone, disc and torus, each given by
+//! its own keys (POV-Ray's: corners, end points and radii, major and minor radius), then an
+//! optional placement, and built as a [`Solid`]: the canonical shape and one affine transform.
+
+use super::objects::placement;
+use super::{Context, RADIUS_RANGE, check, required};
+use crate::desc::{Finite, ObjectDesc, ObjectKind, Point};
+use crate::error::LoadError;
+use glam::{DVec3, Mat3, Vec3};
+use lucent::shape::{Solid, SolidShape};
+use std::ops::Range;
+use toml::Spanned;
+
+/// Whether `kind` is one of the exact solids.
+pub(super) fn is_solid(kind: ObjectKind) -> bool {
+    matches!(
+        kind,
+        ObjectKind::Box
+            | ObjectKind::Cylinder
+            | ObjectKind::Cone
+            | ObjectKind::Disc
+            | ObjectKind::Torus
+    )
+}
+
+/// The keys of a solid's own shape (a placement may follow).
+pub(super) fn keys(kind: ObjectKind) -> impl Iterator<Item = &'static str> {
+    let keys: &[&str] = match kind {
+        ObjectKind::Box => &["min", "max"],
+        ObjectKind::Cylinder => &["base", "cap", "radius", "open"],
+        ObjectKind::Cone => &["base", "cap", "base_radius", "cap_radius", "open"],
+        ObjectKind::Disc => &["center", "normal", "radius", "hole"],
+        ObjectKind::Torus => &["major", "minor"],
+        _ => &[],
+    };
+    keys.iter().copied()
+}
+
+/// Adds the solid of table `d` (at `table`) with `material`; `emissive`: its material emits a
+/// colour, which a solid cannot yet do as an area light.
+pub(super) fn add_solid(
+    ctx: &mut Context,
+    d: &ObjectDesc,
+    table: Range<usize>,
+    material: u32,
+    emissive: bool,
+) -> Result<(), LoadError> {
+    let kind = d.kind.name();
+    let source = ctx.source;
+    if let Some(m) = &d.motion {
+        return Err(source.error(
+            m.span(),
+            format!("a {kind} cannot move yet (spheres, meshes and the unit shapes can)"),
+        ));
+    }
+    check(
+        source,
+        d.material.span(),
+        !emissive,
+        &format!(
+            "a {kind} cannot be an area light yet, and material `{}` emits light (use a mesh or a sphere, or give the emission as a texture to make it glow without lighting the scene)",
+            d.material.get_ref()
+        ),
+    )?;
+    let own = own_shape(ctx, d, table.clone())?;
+    let placed = placement(ctx, d, table.clone())?;
+    // The shape's frame is in world coordinates (f64); the placement is already relative to
+    // the scene's origin, so its linear part carries the frame's origin and its translation
+    // moves it on.
+    let linear = placed.matrix3 * own.linear;
+    let origin = glam::Mat3::from(placed.matrix3).as_dmat3() * own.origin
+        + DVec3::from(Vec3::from(placed.translation));
+    let to_world = glam::Affine3A::from_mat3_translation(Mat3::from(linear), origin.as_vec3());
+    let solid = Solid::new(own.shape, to_world).ok_or_else(|| {
+        source.error(
+            table,
+            format!("the {kind} is flattened or overflows in single precision where it is placed"),
+        )
+    })?;
+    ctx.builder.solid(solid, material);
+    Ok(())
+}
+
+/// A canonical shape and the frame that makes it the table's: its linear part and origin (in
+/// the world, before the scene's origin is taken off).
+struct OwnShape {
+    shape: SolidShape,
+    linear: glam::Mat3A,
+    origin: DVec3,
+}
+
+fn own_shape(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<OwnShape, LoadError> {
+    let kind = d.kind.name();
+    let source = ctx.source;
+    let point =
+        |key: &str, v: &Option<Spanned<Point>>| -> Result<(DVec3, Range<usize>), LoadError> {
+            let p = required(source, table.clone(), kind, key, v)?;
+            Ok((p.get_ref().0, p.span()))
+        };
+    let length = |key: &str, v: &Option<Spanned<Finite>>, zero: bool| -> Result<f32, LoadError> {
+        let r = required(source, table.clone(), kind, key, v)?;
+        let x = r.get_ref().0;
+        let ok = (zero && x == 0.0) || RADIUS_RANGE.contains(&x);
+        let (lo, hi) = (RADIUS_RANGE.start(), RADIUS_RANGE.end());
+        let least = if zero { "0 or " } else { "" };
+        check(
+            source,
+            r.span(),
+            ok,
+            &format!("a {kind}'s `{key}` must be {least}between {lo:e} and {hi:e}, got {x}"),
+        )?;
+        Ok(x)
+    };
+    Ok(match d.kind {
+        ObjectKind::Box => {
+            let (lo, _) = point("min", &d.min)?;
+            let (hi, at) = point("max", &d.max)?;
+            check(
+                source,
+                at,
+                lo.cmplt(hi).all(),
+                &format!("a box's `max` must be above its `min` on every axis: min {lo}, max {hi}"),
+            )?;
+            OwnShape {
+                shape: SolidShape::Box,
+                linear: glam::Mat3A::from_diagonal(((hi - lo) * 0.5).as_vec3()),
+                origin: (lo + hi) * 0.5,
+            }
+        }
+        ObjectKind::Cylinder | ObjectKind::Cone => {
+            let (base, _) = point("base", &d.base)?;
+            let (cap, at) = point("cap", &d.cap)?;
+            let axis = cap - base;
+            check(
+                source,
+                at,
+                axis.length() > 0.0,
+                &format!("a {kind}'s `cap` must differ from its `base`"),
+            )?;
+            let (radii, open) = if d.kind == ObjectKind::Cylinder {
+                let r = length("radius", &d.radius, false)?;
+                ([r, r], d.open.unwrap_or(false))
+            } else {
+                let r0 = length("base_radius", &d.base_radius, true)?;
+                let r1 = length("cap_radius", &d.cap_radius, true)?;
+                let at = d.cap_radius.as_ref().map_or(table.clone(), Spanned::span);
+                check(
+                    source,
+                    at,
+                    r0 > 0.0 || r1 > 0.0,
+                    "a cone's radii cannot both be 0",
+                )?;
+                ([r0, r1], d.open.unwrap_or(false))
+            };
+            let widest = radii[0].max(radii[1]);
+            let shape = if d.kind == ObjectKind::Cylinder {
+                SolidShape::Cylinder { open }
+            } else {
+                let ratio = |r: f32| f64::from(r) / f64::from(widest);
+                SolidShape::Cone {
+                    radii: [ratio(radii[0]), ratio(radii[1])],
+                    open,
+                }
+            };
+            OwnShape {
+                shape,
+                linear: frame_along(axis.as_vec3(), widest),
+                origin: base,
+            }
+        }
+        ObjectKind::Disc => {
+            let (center, _) = point("center", &d.center)?;
+            let n = required(source, table.clone(), kind, "normal", &d.normal)?;
+            let normal = super::rescaled(n.get_ref().0);
+            check(
+                source,
+                n.span(),
+                normal != Vec3::ZERO,
+                "a disc's normal cannot be zero",
+            )?;
+            let r = length("radius", &d.radius, false)?;
+            let hole = match &d.hole {
+                None => 0.0,
+                Some(h) => {
+                    let x = h.get_ref().0;
+                    let why = format!(
+                        "a disc's `hole` must be at least 0 and below its radius {r}, got {x}"
+                    );
+                    check(source, h.span(), (0.0..r).contains(&x), &why)?;
+                    x
+                }
+            };
+            let mut linear = frame_along(normal, r);
+            linear.z_axis = linear.z_axis.normalize() * r;
+            OwnShape {
+                shape: SolidShape::Disc {
+                    hole: f64::from(hole) / f64::from(r),
+                },
+                linear,
+                origin: center,
+            }
+        }
+        _ => {
+            let major = length("major", &d.major, false)?;
+            let minor = length("minor", &d.minor, false)?;
+            // The canonical torus lies about z; POV-Ray's, and this one's, about y.
+            let about_y = glam::Mat3A::from_rotation_x(-std::f32::consts::FRAC_PI_2);
+            OwnShape {
+                shape: SolidShape::Torus {
+                    minor: f64::from(minor) / f64::from(major),
+                },
+                linear: about_y * glam::Mat3A::from_diagonal(Vec3::splat(major)),
+                origin: DVec3::ZERO,
+            }
+        }
+    })
+}
+
+/// Columns: two directions across `axis` scaled by `radius`, then `axis` itself; a
+/// right-handed frame.
+fn frame_along(axis: Vec3, radius: f32) -> glam::Mat3A {
+    let (u, v) = axis.normalize().any_orthonormal_pair();
+    let v = if u.cross(v).dot(axis) < 0.0 { -v } else { v };
+    glam::Mat3A::from_cols((u * radius).into(), (v * radius).into(), axis.into())
+}

@@ -1,0 +1,294 @@
+//! Mathematical solids: boxes, cylinders, cones, discs and tori, each the canonical shape of
+//! its file placed in the world by an affine transform.
+//!
+//! A ray is taken into the solid's own space in `f64` and met there with the shape's equation
+//! (a slab test, a quadratic, a quartic); the hit comes back to the world in `f32` with a
+//! bound on its error, as [`crate::spawn`] needs. Because the roots are found in `f64` from an
+//! origin that [`crate::spawn::offset_origin`] has put on the right side of the surface, a ray
+//! leaving a solid needs no rule of its own: the crossing it starts from lies at `t ≤ 0`, and
+//! a torus or a cone can still be met again further on.
+//!
+//! Every crossing a ray makes is reported, in order ([`Solid::crossings`]), as constructive
+//! solid geometry will need; a closed solid's crossings alternate between entering and leaving.
+
+pub mod cone;
+pub mod cuboid;
+pub mod cylinder;
+pub mod disc;
+pub mod poly;
+#[cfg(test)]
+mod tests;
+pub mod torus;
+
+use super::gamma;
+use arrayvec::ArrayVec;
+use glam::{Affine3A, DAffine3, DMat3, DVec2, DVec3, Vec2, Vec3};
+use lucent_accel::{Aabb, Ray};
+
+/// Crossings of a line with a shape's surface: the ray parameter and which part of the surface
+/// (a box's face, a cylinder's side or cap). At most four for a torus, two elsewhere.
+pub type Crossings = ArrayVec<(f64, u8), 8>;
+
+/// Texture coordinates at a point and their derivatives, in the shape's own space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// `(u, v)`.
+    pub uv: DVec2,
+    /// `∂p/∂u`.
+    pub dpdu: DVec3,
+    /// `∂p/∂v`.
+    pub dpdv: DVec3,
+}
+
+/// A cap's or a disc's coordinates: `(x, y)` mapped from `[-1, 1]` to `[0, 1]`.
+fn cap_frame(p: DVec3) -> Frame {
+    Frame {
+        uv: DVec2::new((p.x + 1.0) / 2.0, (p.y + 1.0) / 2.0),
+        dpdu: DVec3::new(2.0, 0.0, 0.0),
+        dpdv: DVec3::new(0.0, 2.0, 0.0),
+    }
+}
+
+/// Which canonical shape, and its own proportions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SolidShape {
+    /// The cube `[-1, 1]³` ([`cuboid`]).
+    Box,
+    /// Radius 1 about z from `z = 0` to 1 ([`cylinder`]); `open`: without its caps.
+    Cylinder {
+        /// Without caps.
+        open: bool,
+    },
+    /// About z from radius `radii[0]` at `z = 0` to `radii[1]` at `z = 1` ([`cone`]).
+    Cone {
+        /// The radii at the two ends, ≥ 0, not both 0.
+        radii: [f64; 2],
+        /// Without caps.
+        open: bool,
+    },
+    /// Radius 1 in `z = 0`, facing `+z`, with a hole of radius `hole` ([`disc`]).
+    Disc {
+        /// The hole's radius, in `[0, 1)`.
+        hole: f64,
+    },
+    /// Major radius 1 about z, tube radius `minor` ([`torus`]).
+    Torus {
+        /// The tube's radius, > 0.
+        minor: f64,
+    },
+}
+
+impl SolidShape {
+    /// The name used in scene files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            SolidShape::Box => "box",
+            SolidShape::Cylinder { .. } => "cylinder",
+            SolidShape::Cone { .. } => "cone",
+            SolidShape::Disc { .. } => "disc",
+            SolidShape::Torus { .. } => "torus",
+        }
+    }
+
+    /// The box about the shape in its own space.
+    fn bounds(&self) -> (DVec3, DVec3) {
+        match *self {
+            SolidShape::Box => (DVec3::splat(-1.0), DVec3::ONE),
+            SolidShape::Cylinder { .. } => (DVec3::new(-1.0, -1.0, 0.0), DVec3::ONE),
+            SolidShape::Cone { radii, .. } => {
+                let r = radii[0].max(radii[1]);
+                (DVec3::new(-r, -r, 0.0), DVec3::new(r, r, 1.0))
+            }
+            SolidShape::Disc { .. } => (DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 0.0)),
+            SolidShape::Torus { minor } => torus::bounds(minor),
+        }
+    }
+
+    /// The crossings of the line `o + t·d` with the surface, `t` in `range` at least.
+    fn crossings(&self, o: DVec3, d: DVec3, range: [f64; 2], out: &mut Crossings) {
+        match *self {
+            SolidShape::Box => cuboid::crossings(o, d, out),
+            SolidShape::Cylinder { open } => cylinder::crossings(o, d, open, out),
+            SolidShape::Cone { radii, open } => cone::crossings(o, d, radii, open, out),
+            SolidShape::Disc { hole } => disc::crossings(o, d, hole, out),
+            SolidShape::Torus { minor } => torus::crossings(o, d, minor, range, out),
+        }
+    }
+
+    /// The outward normal (not of unit length) at `p` on `part`.
+    fn normal(&self, p: DVec3, part: u8) -> DVec3 {
+        match *self {
+            SolidShape::Box => cuboid::normal(part),
+            SolidShape::Cylinder { .. } => cylinder::normal(p, part),
+            SolidShape::Cone { radii, .. } => cone::normal(p, radii, part),
+            SolidShape::Disc { .. } => DVec3::Z,
+            SolidShape::Torus { minor } => torus::normal(p, minor),
+        }
+    }
+
+    fn frame(&self, p: DVec3, part: u8) -> Frame {
+        match *self {
+            SolidShape::Box => cuboid::frame(p, part),
+            SolidShape::Cylinder { .. } => cylinder::frame(p, part),
+            SolidShape::Cone { radii, .. } => cone::frame(p, radii, part),
+            SolidShape::Disc { .. } => disc::frame(p),
+            SolidShape::Torus { .. } => torus::frame(p),
+        }
+    }
+
+    /// Whether `p` lies inside (the capped volume for an open cylinder or cone; never for a
+    /// disc).
+    fn contains(&self, p: DVec3) -> bool {
+        match *self {
+            SolidShape::Box => cuboid::contains(p),
+            SolidShape::Cylinder { .. } => cylinder::contains(p),
+            SolidShape::Cone { radii, .. } => cone::contains(p, radii),
+            SolidShape::Disc { .. } => false,
+            SolidShape::Torus { minor } => torus::contains(p, minor),
+        }
+    }
+}
+
+/// A canonical shape placed in the world.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solid {
+    /// The shape in its own space.
+    pub shape: SolidShape,
+    to_world: DAffine3,
+    to_object: DAffine3,
+    /// The inverse transpose of `to_world`'s linear part: normals to the world.
+    normal_to_world: DMat3,
+}
+
+/// A point on a solid's surface in the world, as a hit needs it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidPoint {
+    /// The point.
+    pub point: Vec3,
+    /// The outward unit normal.
+    pub normal: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// `∂p/∂u` in the world.
+    pub dpdu: Vec3,
+    /// `∂p/∂v` in the world.
+    pub dpdv: Vec3,
+    /// A bound on the absolute error of `point`, per axis.
+    pub error: Vec3,
+}
+
+impl Solid {
+    /// `shape` placed by `to_world`; `None` when the transform is singular or not finite.
+    pub fn new(shape: SolidShape, to_world: Affine3A) -> Option<Self> {
+        let m = DAffine3 {
+            matrix3: glam::Mat3::from(to_world.matrix3).as_dmat3(),
+            translation: to_world.translation.as_dvec3(),
+        };
+        let det = m.matrix3.determinant();
+        if !(det.is_finite() && det != 0.0 && m.translation.is_finite()) {
+            return None;
+        }
+        Some(Self {
+            shape,
+            to_world: m,
+            to_object: m.inverse(),
+            normal_to_world: m.matrix3.inverse().transpose(),
+        })
+    }
+
+    /// The box about it in the world.
+    pub fn bounds(&self) -> Aabb {
+        let (lo, hi) = self.shape.bounds();
+        let mut b = Aabb::EMPTY;
+        for i in 0..8 {
+            let corner = DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            );
+            let w = self.to_world.transform_point3(corner).as_vec3();
+            // Widened by far more than the rounding to f32, so the box holds the f64 one.
+            let pad = w.abs() * 1e-6 + Vec3::splat(f32::MIN_POSITIVE);
+            b = b.union(Aabb::new(w - pad, w + pad));
+        }
+        b
+    }
+
+    /// The ray in the solid's own space (the same parameter `t`).
+    fn local(&self, ray: &Ray) -> (DVec3, DVec3) {
+        (
+            self.to_object.transform_point3(ray.origin.as_dvec3()),
+            self.to_object.transform_vector3(ray.dir.as_dvec3()),
+        )
+    }
+
+    /// Every crossing of `ray` with the surface in `(0, t_max)`, nearest first.
+    pub fn crossings(&self, ray: &Ray, t_max: f32) -> Crossings {
+        let mut out = Crossings::new();
+        let (o, d) = self.local(ray);
+        let t_max = f64::from(t_max);
+        let Some(range) = self.range(o, d, t_max) else {
+            return out;
+        };
+        self.shape.crossings(o, d, range, &mut out);
+        out.retain(|c| c.0 > 0.0 && c.0 < t_max);
+        out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        out
+    }
+
+    /// The nearest crossing in `(0, t_max)`.
+    pub fn nearest(&self, ray: &Ray, t_max: f32) -> Option<(f64, u8)> {
+        self.crossings(ray, t_max).first().copied()
+    }
+
+    /// Where the line `o + t·d` (own space) lies in the shape's box (widened by a hair) within
+    /// `[0, t_max]`; `None` when it misses.
+    fn range(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<[f64; 2]> {
+        let (lo, hi) = self.shape.bounds();
+        let pad = (hi - lo).max_element() * 1e-9;
+        let (lo, hi) = (lo - pad, hi + pad);
+        let (mut near, mut far) = (0.0f64, t_max);
+        for axis in 0..3 {
+            if d[axis] == 0.0 {
+                if o[axis] < lo[axis] || o[axis] > hi[axis] {
+                    return None;
+                }
+                continue;
+            }
+            let (a, b) = (
+                (lo[axis] - o[axis]) / d[axis],
+                (hi[axis] - o[axis]) / d[axis],
+            );
+            near = near.max(a.min(b));
+            far = far.min(a.max(b));
+        }
+        (near <= far).then_some([near, far])
+    }
+
+    /// The surface where `ray` crosses it at `t` on `part` (from [`Solid::crossings`]).
+    pub fn surface(&self, ray: &Ray, t: f64, part: u8) -> SolidPoint {
+        let (o, d) = self.local(ray);
+        let p = o + d * t;
+        let world = self.to_world.transform_point3(p);
+        let normal = (self.normal_to_world * self.shape.normal(p, part)).normalize_or(DVec3::Z);
+        let frame = self.shape.frame(p, part);
+        // The f64 point is exact to far below f32's precision; what remains is the sum that
+        // places it (three products and the translation) and the rounding to f32.
+        let magnitude = self.to_world.translation.abs() + self.to_world.matrix3.abs() * p.abs();
+        let error = (magnitude + world.abs()) * f64::from(gamma(4));
+        SolidPoint {
+            point: world.as_vec3(),
+            normal: normal.as_vec3(),
+            uv: frame.uv.as_vec2(),
+            dpdu: (self.to_world.matrix3 * frame.dpdu).as_vec3(),
+            dpdv: (self.to_world.matrix3 * frame.dpdv).as_vec3(),
+            error: error.as_vec3(),
+        }
+    }
+
+    /// Whether `p` lies inside.
+    pub fn contains(&self, p: Vec3) -> bool {
+        self.shape
+            .contains(self.to_object.transform_point3(p.as_dvec3()))
+    }
+}
