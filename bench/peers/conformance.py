@@ -320,6 +320,19 @@ CASES["principledthin"] = (
     '<float name="eta" value="1.4"/></bsdf>',
 )
 
+# The exact cylinder (Mitsuba's has no caps: its inside is seen through the top), placed by a
+# to_world and checker-textured so that its texture coordinates are compared too. (A sphere
+# scaled unevenly is not a case: Mitsuba warns and renders a sphere, lucent the ellipsoid.)
+CYLINDER = FLOOR.format(y=-1) + """    <shape type="cylinder">
+        <point name="p0" x="0" y="0" z="-1"/><point name="p1" x="0" y="0" z="0.6"/>
+        <float name="radius" value="0.7"/>
+        <transform name="to_world"><rotate x="1" angle="-90"/><rotate z="1" angle="15"/></transform>
+        {bsdf}
+    </shape>
+</scene>
+"""
+CASES["shape-cylinder"] = (CYLINDER, f'<bsdf type="twosided"><bsdf type="diffuse">{bitmap("reflectance", "checker.png")}</bsdf></bsdf>')
+
 # The sensors other than the pinhole: a diffuse ball seen through an orthographic view (its
 # to_world's scale sizes the view) and through a thin lens focused on the ball's front.
 DIFFUSE = '<bsdf type="diffuse"><rgb name="reflectance" value="0.5, 0.3, 0.2"/></bsdf>'

@@ -62,6 +62,7 @@ pub fn add_object(
         ("cap_radius", span(&d.cap_radius)),
         ("open", d.open.map(|_| o.span())),
         ("hole", span(&d.hole)),
+        ("radii", span(&d.radii)),
         ("major", span(&d.major)),
         ("minor", span(&d.minor)),
     ];

@@ -1,4 +1,4 @@
-//! `[[object]]` tables of the exact solids: box, cylinder, cone, disc and torus, each given by
+//! `[[object]]` tables of the exact solids: box, cylinder, cone, disc, ellipsoid and torus, each given by
 //! its own keys (POV-Ray's: corners, end points and radii, major and minor radius), then an
 //! optional placement, and built as a [`Solid`]: the canonical shape and one affine transform.
 
@@ -20,6 +20,7 @@ pub(super) fn is_solid(kind: ObjectKind) -> bool {
             | ObjectKind::Cone
             | ObjectKind::Disc
             | ObjectKind::Torus
+            | ObjectKind::Ellipsoid
     )
 }
 
@@ -31,6 +32,7 @@ pub(super) fn keys(kind: ObjectKind) -> impl Iterator<Item = &'static str> {
         ObjectKind::Cone => &["base", "cap", "base_radius", "cap_radius", "open"],
         ObjectKind::Disc => &["center", "normal", "radius", "hole"],
         ObjectKind::Torus => &["major", "minor"],
+        ObjectKind::Ellipsoid => &["center", "radii"],
         _ => &[],
     };
     keys.iter().copied()
@@ -197,6 +199,25 @@ fn own_shape(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<OwnSh
                     hole: f64::from(hole) / f64::from(r),
                 },
                 linear,
+                origin: center,
+            }
+        }
+        ObjectKind::Ellipsoid => {
+            let (center, _) = point("center", &d.center)?;
+            let r = required(source, table.clone(), kind, "radii", &d.radii)?;
+            let radii = r.get_ref().0;
+            let (lo, hi) = (RADIUS_RANGE.start(), RADIUS_RANGE.end());
+            check(
+                source,
+                r.span(),
+                radii.to_array().iter().all(|x| RADIUS_RANGE.contains(x)),
+                &format!(
+                    "an ellipsoid's `radii` must each be between {lo:e} and {hi:e}, got {radii}"
+                ),
+            )?;
+            OwnShape {
+                shape: SolidShape::Ellipsoid,
+                linear: glam::Mat3A::from_diagonal(radii),
                 origin: center,
             }
         }

@@ -32,6 +32,8 @@ pub enum ObjectKind {
     Disc,
     /// `major`, `minor` about the y axis at the origin (POV-Ray's), and a placement.
     Torus,
+    /// `center`, `radii` (along x, y, z), and a placement.
+    Ellipsoid,
 }
 
 impl ObjectKind {
@@ -50,6 +52,7 @@ impl ObjectKind {
             ObjectKind::Cone => "cone",
             ObjectKind::Disc => "disc",
             ObjectKind::Torus => "torus",
+            ObjectKind::Ellipsoid => "ellipsoid",
         }
     }
 }
@@ -102,6 +105,9 @@ pub struct ObjectDesc {
     /// Disc: the radius of a hole about its centre (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hole: Option<Spanned<Finite>>,
+    /// Ellipsoid: its radii along x, y and z, each > 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radii: Option<Spanned<Vector>>,
     /// Torus: the radius of the circle the tube follows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub major: Option<Spanned<Finite>>,
@@ -175,6 +181,7 @@ impl ObjectDesc {
             cap_radius: None,
             open: None,
             hole: None,
+            radii: None,
             major: None,
             minor: None,
             point: None,

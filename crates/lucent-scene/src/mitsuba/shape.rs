@@ -4,7 +4,8 @@
 //! | --- | --- |
 //! | `obj`, `ply` (`filename`, `face_normals`, `flip_normals`, `to_world`) | `mesh` (`file`, `smooth = false` for face normals, `flip_normals`, `transform`) |
 //! | `serialized` (the same, and `shape_index`, default 0) | `mesh` as above, with `part` = the shape index; its texture coordinates as written, as Mitsuba reads them (see [`crate::serialized`]) |
-//! | `sphere` (`center`, `radius`, `to_world`) | `sphere`: `to_world · translate(center) · scale(radius)` must be a similarity; `uv_axes` its rotation, so that textures and tangents lie as in Mitsuba |
+//! | `sphere` (`center`, `radius`, `to_world`) | `sphere` when `to_world · translate(center) · scale(radius)` is a similarity, with `uv_axes` its rotation, so that textures and tangents lie as in Mitsuba; otherwise the exact `ellipsoid` it makes (Mitsuba's uvs), with a warning: Mitsuba draws a sphere there |
+//! | `cylinder` (`p0`, `p1`, `radius`, `to_world`) | the exact `cylinder`, `open` (Mitsuba's has no caps), placed by `transform`; `u` may start at another turn about the axis than Mitsuba's where `p1 − p0` is not along z |
 //! | `rectangle`, `cube`, `disk` (`to_world`) | the same kinds with `transform` and `flip_v` (Mitsuba's uvs): the canonical shapes agree (`[-1, 1]²` at z = 0 facing +z, `[-1, 1]³`, the unit disk at z = 0 facing +z) |
 //!
 //! A sphere's `flip_normals` is not read (lucent's spheres face out), with a warning.
@@ -35,6 +36,7 @@ pub const TYPES: &[&str] = &[
     "rectangle",
     "cube",
     "disk",
+    "cylinder",
 ];
 
 /// The object of the `<shape>` `el`.
@@ -46,6 +48,7 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
         "rectangle" => ObjectKind::Rectangle,
         "cube" => ObjectKind::Cube,
         "disk" => ObjectKind::Disk,
+        "cylinder" => ObjectKind::Cylinder,
         other => return Err(super::unknown_type(el, other)),
     };
     let mut o = ObjectDesc::new(kind, "");
@@ -99,10 +102,19 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
                 * DMat4::from_translation(center)
                 * DMat4::from_scale(DVec3::splat(radius));
             let Some(scale) = transform::uniform_scale(&m) else {
+                // Scaled unevenly: the exact ellipsoid, placed by the whole transform. Mitsuba
+                // warns and draws a sphere instead (of the scale its decomposition puts first).
                 let at = to_world.map_or(&el.loc, |(_, loc)| loc);
-                return Err(at.error(
-                    "a sphere's to_world must be a similarity (rotation, uniform scale, translation): this one makes an ellipsoid, which lucent does not read",
-                ));
+                p.warn(
+                    at,
+                    "this sphere's to_world scales unevenly: lucent renders the ellipsoid it makes, where Mitsuba warns and renders a sphere",
+                );
+                o.kind = ObjectKind::Ellipsoid;
+                o.center = Some(Spanned::new(0..0, Point(center)));
+                let r = Vector(glam::Vec3::splat(radius as f32));
+                o.radii = Some(Spanned::new(0..0, r));
+                place(&mut o)?;
+                return finish(cx, el, p, o);
             };
             let center = m.transform_point3(DVec3::ZERO);
             let c = center.as_vec3();
@@ -123,13 +135,40 @@ pub fn read<'a>(cx: &mut Convert<'a>, el: &'a Element) -> Result<ObjectDesc, Loa
             let axes = [m.x_axis, m.y_axis, m.z_axis].map(|a| a.truncate().normalize().as_vec3());
             o.uv_axes = Some(Spanned::new(0..0, axes.map(Vector)));
         }
+        ObjectKind::Cylinder => {
+            let p0 = p.vector("p0")?.unwrap_or(DVec3::ZERO);
+            let p1 = p.vector("p1")?.unwrap_or(DVec3::Z);
+            let radius = p.float_or("radius", 1.0)?;
+            o.base = Some(Spanned::new(0..0, Point(p0)));
+            o.cap = Some(Spanned::new(0..0, Point(p1)));
+            o.radius = Some(Spanned::new(0..0, Finite(radius as f32)));
+            o.open = Some(true);
+            place(&mut o)?;
+        }
         _ => place(&mut o)?,
     }
+    finish(cx, el, p, o)
+}
+
+/// A shape's flipped normals, material, emitter and media, read into `o`.
+fn finish<'a>(
+    cx: &mut Convert<'a>,
+    el: &'a Element,
+    p: super::props::Plugin<'a>,
+    mut o: ObjectDesc,
+) -> Result<ObjectDesc, LoadError> {
+    let kind = o.kind;
     if p.boolean("flip_normals")? == Some(true) {
-        if kind == ObjectKind::Sphere {
+        if matches!(
+            kind,
+            ObjectKind::Sphere | ObjectKind::Ellipsoid | ObjectKind::Cylinder
+        ) {
             p.warn(
                 &el.loc,
-                "`flip_normals` of a sphere is not read: lucent's spheres face outwards (an emitting sphere emits outwards)",
+                format!(
+                    "`flip_normals` of a {} is not read: lucent's spheres and exact solids face outwards (an emitting sphere emits outwards)",
+                    kind.name()
+                ),
             );
         } else {
             o.flip_normals = Some(true);

@@ -98,14 +98,35 @@ fn flip_normals_turns_a_disk_around() {
 #[test]
 fn spheres_lucent_cannot_draw_are_refused_or_warned_about() {
     let dir = Dir::new("sphere-limits");
+    // Scaled unevenly: the exact ellipsoid, hit where its radii put it.
     let text = scene(
         r#"    <shape type="sphere">
-        <transform name="to_world"><scale x="1" y="2" z="1"/></transform>
+        <float name="radius" value="0.5"/>
+        <transform name="to_world"><scale x="1" y="2" z="3"/><translate x="1"/></transform>
     </shape>"#,
     );
     let path = dir.write("ellipsoid.xml", &text);
-    let e = import_error(&path, &open());
-    assert_error(&e, &path, position(&text, "<transform"), "similarity");
+    let (file, loaded) = load(&path);
+    assert_eq!(loaded.scene.counts().solids, 1);
+    let (line, column) = position(&text, "<transform");
+    let said = format!("ellipsoid.xml:{line}:{column}: this sphere's to_world scales unevenly");
+    assert!(
+        file.warnings.iter().any(|w| w.contains(&said)),
+        "{:?}",
+        file.warnings
+    );
+    let mut stats = RayStats::default().traversal;
+    let down = lucent::accel::Ray::new(Vec3::new(1.0, 5.0, 0.0), -Vec3::Y);
+    let along = lucent::accel::Ray::new(Vec3::new(1.0, 0.0, 5.0), -Vec3::Z);
+    let mut t = |r| loaded.scene.intersect(&r, &mut stats).map(|h| h.t);
+    assert!(
+        (t(down).unwrap() - 4.0).abs() < 1e-5,
+        "radius 0.5 · 2 along y"
+    );
+    assert!(
+        (t(along).unwrap() - 3.5).abs() < 1e-5,
+        "radius 0.5 · 3 along z"
+    );
 
     let text = scene(r#"    <shape type="sphere"><float name="radius" value="1e-12"/></shape>"#);
     let path = dir.write("tiny.xml", &text);

@@ -1,5 +1,5 @@
-//! Mathematical solids: boxes, cylinders, cones, discs and tori, each the canonical shape of
-//! its file placed in the world by an affine transform.
+//! Mathematical solids: boxes, cylinders, cones, discs, ellipsoids and tori, each the canonical
+//! shape of its file placed in the world by an affine transform.
 //!
 //! A ray is taken into the solid's own space in `f64` and met there with the shape's equation
 //! (a slab test, a quadratic, a quartic); the hit comes back to the world in `f32` with a
@@ -15,6 +15,7 @@ pub mod cone;
 pub mod cuboid;
 pub mod cylinder;
 pub mod disc;
+pub mod ellipsoid;
 pub mod poly;
 #[cfg(test)]
 mod tests;
@@ -71,6 +72,8 @@ pub enum SolidShape {
         /// The hole's radius, in `[0, 1)`.
         hole: f64,
     },
+    /// The unit sphere, an ellipsoid once placed ([`ellipsoid`]).
+    Ellipsoid,
     /// Major radius 1 about z, tube radius `minor` ([`torus`]).
     Torus {
         /// The tube's radius, > 0.
@@ -86,6 +89,7 @@ impl SolidShape {
             SolidShape::Cylinder { .. } => "cylinder",
             SolidShape::Cone { .. } => "cone",
             SolidShape::Disc { .. } => "disc",
+            SolidShape::Ellipsoid => "ellipsoid",
             SolidShape::Torus { .. } => "torus",
         }
     }
@@ -100,6 +104,7 @@ impl SolidShape {
                 (DVec3::new(-r, -r, 0.0), DVec3::new(r, r, 1.0))
             }
             SolidShape::Disc { .. } => (DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 0.0)),
+            SolidShape::Ellipsoid => (DVec3::splat(-1.0), DVec3::ONE),
             SolidShape::Torus { minor } => torus::bounds(minor),
         }
     }
@@ -111,6 +116,7 @@ impl SolidShape {
             SolidShape::Cylinder { open } => cylinder::crossings(o, d, open, out),
             SolidShape::Cone { radii, open } => cone::crossings(o, d, radii, open, out),
             SolidShape::Disc { hole } => disc::crossings(o, d, hole, out),
+            SolidShape::Ellipsoid => ellipsoid::crossings(o, d, out),
             SolidShape::Torus { minor } => torus::crossings(o, d, minor, range, out),
         }
     }
@@ -122,6 +128,7 @@ impl SolidShape {
             SolidShape::Cylinder { .. } => cylinder::normal(p, part),
             SolidShape::Cone { radii, .. } => cone::normal(p, radii, part),
             SolidShape::Disc { .. } => DVec3::Z,
+            SolidShape::Ellipsoid => p,
             SolidShape::Torus { minor } => torus::normal(p, minor),
         }
     }
@@ -132,6 +139,7 @@ impl SolidShape {
             SolidShape::Cylinder { .. } => cylinder::frame(p, part),
             SolidShape::Cone { radii, .. } => cone::frame(p, radii, part),
             SolidShape::Disc { .. } => disc::frame(p),
+            SolidShape::Ellipsoid => ellipsoid::frame(p),
             SolidShape::Torus { .. } => torus::frame(p),
         }
     }
@@ -144,6 +152,7 @@ impl SolidShape {
             SolidShape::Cylinder { .. } => cylinder::contains(p),
             SolidShape::Cone { radii, .. } => cone::contains(p, radii),
             SolidShape::Disc { .. } => false,
+            SolidShape::Ellipsoid => ellipsoid::contains(p),
             SolidShape::Torus { minor } => torus::contains(p, minor),
         }
     }
