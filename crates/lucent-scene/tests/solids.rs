@@ -104,8 +104,13 @@ fn every_ray_that_enters_a_closed_solid_leaves_it() {
         "[[object]]\ntype = \"torus\"\nmajor = 1.5\nminor = 0.4\nrotate = [30, 20, 10]\nscale = [1, 1.3, 0.8]\nmaterial = \"m\"\n\
          [[object]]\ntype = \"cylinder\"\nbase = [3, -1, 0]\ncap = [3.5, 1, 0.2]\nradius = 0.6\nmaterial = \"m\"\n\
          [[object]]\ntype = \"cone\"\nbase = [-3, -1, 0]\ncap = [-3, 1, 0.5]\nbase_radius = 0.8\ncap_radius = 0.2\nmaterial = \"m\"\n\
-         [[object]]\ntype = \"box\"\nmin = [-1, 2, -1]\nmax = [1, 3, 1]\nrotate = [10, 40, 0]\nmaterial = \"m\"\n",
+         [[object]]\ntype = \"box\"\nmin = [-1, 2, -1]\nmax = [1, 3, 1]\nrotate = [10, 40, 0]\nmaterial = \"m\"\n\
+         [[object]]\ntype = \"difference\"\nmaterial = \"m\"\nrotate = [20, 0, 30]\ntranslate = [0, -1.2, 0]\nchildren = [\
+           { type = \"merge\", children = [{ type = \"sphere\", center = [0, 0, 0], radius = 0.8 }, { type = \"box\", min = [0, -0.5, -0.5], max = [1.2, 0.5, 0.5] }] },\
+           { type = \"cylinder\", base = [0, 0, -2], cap = [0, 0, 2], radius = 0.3 },\
+           { type = \"torus\", major = 0.8, minor = 0.2, inverse = true, scale = 0.5 }]\n",
     );
+    assert_eq!(s.counts().csgs, 1);
     let mut odd = 0;
     let mut hits = 0;
     let mut state = 12345u64;
@@ -127,6 +132,87 @@ fn every_ray_that_enters_a_closed_solid_leaves_it() {
         "{hits} rays hit: the test must reach the solids"
     );
     assert_eq!(odd, 0, "rays that entered and never left");
+}
+
+#[test]
+fn a_bored_box_is_hit_on_its_faces_and_walls_in_their_materials() {
+    let s = scene(
+        "[[material]]\nname = \"wall\"\nkd = 0.2\n\
+         [[object]]\ntype = \"difference\"\nmaterial = \"m\"\ntranslate = [0, 1, 0]\nchildren = [\
+           { type = \"box\", min = [-1, -1, -1], max = [1, 1, 1] },\
+           { type = \"cylinder\", base = [0, 0, -2], cap = [0, 0, 2], radius = 0.5, material = \"wall\" }]\n",
+    );
+    let mut stats = TraversalStats::default();
+    let mut hit = |o: Vec3, d: Vec3| s.intersect(&Ray::new(o, d), &mut stats);
+    assert!(
+        hit(Vec3::new(0.1, 1.0, 5.0), Vec3::NEG_Z).is_none(),
+        "down the bore"
+    );
+    let face = hit(Vec3::new(0.7, 1.0, 5.0), Vec3::NEG_Z).unwrap();
+    assert!((face.t - 4.0).abs() < 1e-6 && (face.normal - Vec3::Z).length() < 1e-6);
+    assert_eq!(face.material, 0);
+    // From inside the bore, across it: the wall at x = 0.5, facing into the bore.
+    let wall = hit(Vec3::new(0.0, 1.0, 0.0), Vec3::X).unwrap();
+    assert!((wall.t - 0.5).abs() < 1e-6 && (wall.normal + Vec3::X).length() < 1e-6);
+    assert_eq!(wall.material, 1, "the cylinder's own material");
+}
+
+#[test]
+fn bad_combinations_are_refused_at_their_keys() {
+    let cases = [
+        (
+            "[[object]]\ntype = \"union\"\nmaterial = \"m\"\nchildren = [{ type = \"box\", min = [0, 0, 0], max = [1, 1, 1] }]\n",
+            "bad.toml:10:12:",
+            "a union needs at least two `children`, got 1",
+        ),
+        (
+            "[[object]]\ntype = \"merge\"\nmaterial = \"m\"\n",
+            "bad.toml:7:1:",
+            "a merge needs `children`",
+        ),
+        (
+            "[[object]]\ntype = \"union\"\nmaterial = \"m\"\nchildren = [{ type = \"mesh\", file = \"a.obj\" }, { type = \"sphere\", center = [0, 0, 0], radius = 1 }]\n",
+            "bad.toml:10:13:",
+            "a mesh cannot be part of a combination",
+        ),
+        (
+            "[[object]]\ntype = \"union\"\nmaterial = \"m\"\nchildren = [{ type = \"disc\", center = [0, 0, 0], normal = [0, 1, 0], radius = 1 }, { type = \"sphere\", center = [0, 0, 0], radius = 1 }]\n",
+            "bad.toml:10:13:",
+            "a disc bounds no volume",
+        ),
+        (
+            "[[object]]\ntype = \"union\"\nmaterial = \"m\"\nchildren = [{ type = \"sphere\", center = [0, 0, 0], radius = 1, material = \"nope\" }, { type = \"sphere\", center = [1, 0, 0], radius = 1 }]\n",
+            "bad.toml:10:75:",
+            "unknown material `nope`",
+        ),
+        (
+            "[[object]]\ntype = \"union\"\nmaterial = \"m\"\nchildren = [{ type = \"sphere\", center = [0, 0, 0], radius = 1, uv_axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]] }, { type = \"sphere\", center = [1, 0, 0], radius = 1, scale = 2 }]\n",
+            "bad.toml:10:",
+            "does not apply to a sphere",
+        ),
+        (
+            "[[object]]\ntype = \"intersection\"\nmaterial = \"m\"\ninverse = true\nchildren = [{ type = \"sphere\", center = [0, 0, 0], radius = 1 }, { type = \"sphere\", center = [1, 0, 0], radius = 1 }]\n",
+            "bad.toml:7:1:",
+            "`inverse` does not apply to an intersection",
+        ),
+        (
+            "[[object]]\ntype = \"union\"\nmaterial = \"m\"\nchildren = [{ type = \"sphere\", center = [0, 0, 0], radius = 1, inverse = true }, { type = \"sphere\", center = [1, 0, 0], radius = 1 }]\n",
+            "bad.toml:7:1:",
+            "unbounded",
+        ),
+        (
+            "[[object]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n",
+            "bad.toml:7:1:",
+            "a box needs `material`",
+        ),
+    ];
+    for (objects, place, cause) in cases {
+        let e = error(objects);
+        assert!(
+            e.starts_with(place) && e.contains(cause),
+            "{e}\nwanted {place} … {cause}"
+        );
+    }
 }
 
 #[test]

@@ -2,6 +2,7 @@
 //!
 //! Every error points at the value at fault in the scene file (or at the line of a mesh file).
 
+mod csg;
 mod image_lights;
 mod lights;
 mod material_keys;
@@ -368,28 +369,39 @@ pub fn build_with_files(
 
     let mut meshes = objects::MeshCache::new();
     let mut emitters = Vec::new();
+    let lookup = |named: &Spanned<String>| -> Result<(u32, Rgb, bool), LoadError> {
+        let name = named.get_ref();
+        if let Some(&found) = material_ids.get(name.as_str()) {
+            return Ok(found);
+        }
+        let known: Vec<_> = desc
+            .materials
+            .iter()
+            .map(|m| m.get_ref().name.get_ref().as_str())
+            .collect();
+        let hint = if known.is_empty() {
+            "none are defined".to_string()
+        } else {
+            format!("known: {}", known.join(", "))
+        };
+        Err(source.error(named.span(), format!("unknown material `{name}` ({hint})")))
+    };
     for o in &desc.objects {
         let d = o.get_ref();
-        let name = d.material.get_ref();
-        let Some(&(material, ke, glows)) = material_ids.get(name.as_str()) else {
-            let known: Vec<_> = desc
-                .materials
-                .iter()
-                .map(|m| m.get_ref().name.get_ref().as_str())
-                .collect();
-            let hint = if known.is_empty() {
-                "none are defined".to_string()
-            } else {
-                format!("known: {}", known.join(", "))
-            };
-            return Err(source.error(
-                d.material.span(),
-                format!("unknown material `{name}` ({hint})"),
-            ));
-        };
+        if d.material.get_ref().is_empty() && d.material.span().is_empty() {
+            let kind = d.kind.name();
+            return Err(source.error(o.span(), format!("a {kind} needs `material`")));
+        }
+        let (material, ke, glows) = lookup(&d.material)?;
         let emissive = !ke.is_black();
         let object = ctx.builder.objects();
-        let added = objects::add_object(&mut ctx, &mut meshes, o, material, emissive, glows)?;
+        let added = if csg::operation(d.kind).is_some() {
+            let resolve = |m: &Spanned<String>| lookup(m).map(|(id, ke, _)| (id, !ke.is_black()));
+            csg::add_csg(&mut ctx, o, material, &resolve)?;
+            None
+        } else {
+            objects::add_object(&mut ctx, &mut meshes, o, material, emissive, glows)?
+        };
         let interface = media.interface(&ctx, &d.interior, &d.exterior)?;
         if interface.is_transition() {
             ctx.builder.media().bound_by(object, interface);

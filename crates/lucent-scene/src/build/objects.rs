@@ -37,62 +37,7 @@ pub fn add_object(
 ) -> Result<Option<EmitterSurface>, LoadError> {
     let d = o.get_ref();
     let kind = d.kind.name();
-    let keys = [
-        ("center", span(&d.center)),
-        ("radius", span(&d.radius)),
-        ("point", span(&d.point)),
-        ("normal", span(&d.normal)),
-        ("vertices", span(&d.vertices)),
-        ("file", span(&d.file)),
-        ("part", span(&d.part)),
-        ("smooth", d.smooth.map(|_| o.span())),
-        ("flip_normals", d.flip_normals.map(|_| o.span())),
-        ("transform", span(&d.transform)),
-        ("translate", span(&d.translate)),
-        ("rotate", span(&d.rotate)),
-        ("scale", span(&d.scale)),
-        ("motion", span(&d.motion)),
-        ("uv_axes", span(&d.uv_axes)),
-        ("flip_v", d.flip_v.map(|_| o.span())),
-        ("min", span(&d.min)),
-        ("max", span(&d.max)),
-        ("base", span(&d.base)),
-        ("cap", span(&d.cap)),
-        ("base_radius", span(&d.base_radius)),
-        ("cap_radius", span(&d.cap_radius)),
-        ("open", d.open.map(|_| o.span())),
-        ("hole", span(&d.hole)),
-        ("radii", span(&d.radii)),
-        ("major", span(&d.major)),
-        ("minor", span(&d.minor)),
-    ];
-    const PLACED: [&str; 5] = ["flip_normals", "transform", "translate", "rotate", "scale"];
-    const SOLID_PLACED: [&str; 4] = ["transform", "translate", "rotate", "scale"];
-    let mut takes: Vec<&str> = match d.kind {
-        ObjectKind::Sphere => vec!["center", "radius", "uv_axes"],
-        ObjectKind::Plane => vec!["point", "normal"],
-        ObjectKind::Triangle => vec!["vertices"],
-        ObjectKind::Mesh => ["file", "part", "smooth"]
-            .into_iter()
-            .chain(PLACED)
-            .collect(),
-        ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
-            PLACED.iter().copied().chain(["flip_v"]).collect()
-        }
-        solid => super::solids::keys(solid).chain(SOLID_PLACED).collect(),
-    };
-    if let (ObjectKind::Plane, Some(m)) = (d.kind, &d.motion) {
-        return Err(ctx.source.error(
-            m.span(),
-            "an infinite plane cannot move (move a large rectangle instead)",
-        ));
-    }
-    takes.push("motion");
-    let others: Vec<_> = keys
-        .into_iter()
-        .filter(|(k, _)| !takes.contains(k))
-        .collect();
-    refuse_keys(ctx.source, kind, &others)?;
+    check_keys(ctx.source, o, false)?;
     let table = o.span();
     let source = ctx.source;
     if super::solids::is_solid(d.kind) {
@@ -280,6 +225,82 @@ pub fn add_object(
                 .flatten())
         }
     }
+}
+
+/// Refuses the keys of table `o` that its kind does not take (`child`: it is a combination's
+/// child, which may be `inverse`).
+pub(super) fn check_keys(
+    source: &super::Source,
+    o: &Spanned<ObjectDesc>,
+    child: bool,
+) -> Result<(), LoadError> {
+    let d = o.get_ref();
+    let kind = d.kind.name();
+    let keys = [
+        ("center", span(&d.center)),
+        ("radius", span(&d.radius)),
+        ("point", span(&d.point)),
+        ("normal", span(&d.normal)),
+        ("vertices", span(&d.vertices)),
+        ("file", span(&d.file)),
+        ("part", span(&d.part)),
+        ("smooth", d.smooth.map(|_| o.span())),
+        ("flip_normals", d.flip_normals.map(|_| o.span())),
+        ("transform", span(&d.transform)),
+        ("translate", span(&d.translate)),
+        ("rotate", span(&d.rotate)),
+        ("scale", span(&d.scale)),
+        ("motion", span(&d.motion)),
+        ("uv_axes", span(&d.uv_axes)),
+        ("flip_v", d.flip_v.map(|_| o.span())),
+        ("min", span(&d.min)),
+        ("max", span(&d.max)),
+        ("base", span(&d.base)),
+        ("cap", span(&d.cap)),
+        ("base_radius", span(&d.base_radius)),
+        ("cap_radius", span(&d.cap_radius)),
+        ("open", d.open.map(|_| o.span())),
+        ("hole", span(&d.hole)),
+        ("radii", span(&d.radii)),
+        ("major", span(&d.major)),
+        ("minor", span(&d.minor)),
+        ("children", span(&d.children)),
+        ("inverse", d.inverse.map(|_| o.span())),
+    ];
+    const PLACED: [&str; 5] = ["flip_normals", "transform", "translate", "rotate", "scale"];
+    const SOLID_PLACED: [&str; 4] = ["transform", "translate", "rotate", "scale"];
+    let mut takes: Vec<&str> = match d.kind {
+        ObjectKind::Sphere => vec!["center", "radius", "uv_axes"],
+        ObjectKind::Plane => vec!["point", "normal"],
+        ObjectKind::Triangle => vec!["vertices"],
+        ObjectKind::Mesh => ["file", "part", "smooth"]
+            .into_iter()
+            .chain(PLACED)
+            .collect(),
+        ObjectKind::Rectangle | ObjectKind::Cube | ObjectKind::Disk => {
+            PLACED.iter().copied().chain(["flip_v"]).collect()
+        }
+        ObjectKind::Union
+        | ObjectKind::Intersection
+        | ObjectKind::Difference
+        | ObjectKind::Merge => ["children"].into_iter().chain(SOLID_PLACED).collect(),
+        solid => super::solids::keys(solid).chain(SOLID_PLACED).collect(),
+    };
+    if child {
+        takes.push("inverse");
+    }
+    if let (ObjectKind::Plane, Some(m)) = (d.kind, &d.motion) {
+        return Err(source.error(
+            m.span(),
+            "an infinite plane cannot move (move a large rectangle instead)",
+        ));
+    }
+    takes.push("motion");
+    let others: Vec<_> = keys
+        .into_iter()
+        .filter(|(k, _)| !takes.contains(k))
+        .collect();
+    refuse_keys(source, kind, &others)
 }
 
 /// The object's motion, if it has one, checked against what it is.

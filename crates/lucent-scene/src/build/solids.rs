@@ -6,7 +6,7 @@ use super::objects::placement;
 use super::{Context, RADIUS_RANGE, check, required};
 use crate::desc::{Finite, ObjectDesc, ObjectKind, Point};
 use crate::error::LoadError;
-use glam::{DVec3, Mat3, Vec3};
+use glam::{Affine3A, DAffine3, DVec3, Mat3, Vec3};
 use lucent::shape::{Solid, SolidShape};
 use std::ops::Range;
 use toml::Spanned;
@@ -64,23 +64,48 @@ pub(super) fn add_solid(
             d.material.get_ref()
         ),
     )?;
+    let solid = solid_of(ctx, d, table, DAffine3::IDENTITY)?;
+    ctx.builder.solid(solid, material);
+    Ok(())
+}
+
+/// The solid of table `d` (at `table`), placed by its own keys, its placement, then `parent`
+/// (a combination's placement; maps in the scene's coordinates, relative to its origin).
+pub(super) fn solid_of(
+    ctx: &Context,
+    d: &ObjectDesc,
+    table: Range<usize>,
+    parent: DAffine3,
+) -> Result<Solid, LoadError> {
     let own = own_shape(ctx, d, table.clone())?;
-    let placed = placement(ctx, d, table.clone())?;
-    // The shape's frame is in world coordinates (f64); the placement is already relative to
-    // the scene's origin, so its linear part carries the frame's origin and its translation
-    // moves it on.
-    let linear = placed.matrix3 * own.linear;
-    let origin = glam::Mat3::from(placed.matrix3).as_dmat3() * own.origin
-        + DVec3::from(Vec3::from(placed.translation));
-    let to_world = glam::Affine3A::from_mat3_translation(Mat3::from(linear), origin.as_vec3());
-    let solid = Solid::new(own.shape, to_world).ok_or_else(|| {
-        source.error(
+    let frame = DAffine3 {
+        matrix3: Mat3::from(own.linear).as_dmat3(),
+        translation: own.origin - ctx.origin,
+    };
+    let m = parent * placed(ctx, d, table.clone())? * frame;
+    let to_world = Affine3A::from_mat3_translation(m.matrix3.as_mat3(), m.translation.as_vec3());
+    let kind = d.kind.name();
+    Solid::new(own.shape, to_world).ok_or_else(|| {
+        ctx.source.error(
             table,
             format!("the {kind} is flattened or overflows in single precision where it is placed"),
         )
-    })?;
-    ctx.builder.solid(solid, material);
-    Ok(())
+    })
+}
+
+/// Table `d`'s placement keys as a map in the scene's coordinates (relative to its origin):
+/// `w ↦ L·w + T` in the world is `x ↦ L·x + (T − o) + L·o` for `x = w − o`.
+pub(super) fn placed(
+    ctx: &Context,
+    d: &ObjectDesc,
+    table: Range<usize>,
+) -> Result<DAffine3, LoadError> {
+    let p = placement(ctx, d, table)?;
+    let linear = Mat3::from(p.matrix3).as_dmat3();
+    Ok(DAffine3 {
+        matrix3: linear,
+        translation: Vec3::from(p.translation).as_dvec3() + linear * ctx.origin,
+    })
 }
 
 /// A canonical shape and the frame that makes it the table's: its linear part and origin (in
@@ -199,6 +224,16 @@ fn own_shape(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<OwnSh
                     hole: f64::from(hole) / f64::from(r),
                 },
                 linear,
+                origin: center,
+            }
+        }
+        ObjectKind::Sphere => {
+            // A sphere in a combination: the ellipsoid of equal radii.
+            let (center, _) = point("center", &d.center)?;
+            let r = length("radius", &d.radius, false)?;
+            OwnShape {
+                shape: SolidShape::Ellipsoid,
+                linear: glam::Mat3A::from_diagonal(Vec3::splat(r)),
                 origin: center,
             }
         }

@@ -34,6 +34,14 @@ pub enum ObjectKind {
     Torus,
     /// `center`, `radii` (along x, y, z), and a placement.
     Ellipsoid,
+    /// `children` (two or more), all their surfaces; a placement.
+    Union,
+    /// `children`: where all of them are; a placement.
+    Intersection,
+    /// `children`: the first without the others; a placement.
+    Difference,
+    /// `children`: where any of them is, only the outer surfaces; a placement.
+    Merge,
 }
 
 impl ObjectKind {
@@ -53,6 +61,10 @@ impl ObjectKind {
             ObjectKind::Disc => "disc",
             ObjectKind::Torus => "torus",
             ObjectKind::Ellipsoid => "ellipsoid",
+            ObjectKind::Union => "union",
+            ObjectKind::Intersection => "intersection",
+            ObjectKind::Difference => "difference",
+            ObjectKind::Merge => "merge",
         }
     }
 }
@@ -67,7 +79,9 @@ pub struct ObjectDesc {
     /// What it is.
     #[serde(rename = "type")]
     pub kind: ObjectKind,
-    /// The name of its material.
+    /// The name of its material (a combination's child without one wears its parent's; at the
+    /// top level it is required, which the build checks: empty here when not given).
+    #[serde(default = "no_material")]
     pub material: Spanned<String>,
     /// Sphere: centre.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -105,6 +119,13 @@ pub struct ObjectDesc {
     /// Disc: the radius of a hole about its centre (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hole: Option<Spanned<Finite>>,
+    /// Union, intersection, difference, merge: the objects combined (inline tables of the
+    /// exact solids, spheres and combinations).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub children: Option<Spanned<Vec<Spanned<ObjectDesc>>>>,
+    /// A combination's child: turned inside out (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inverse: Option<bool>,
     /// Ellipsoid: its radii along x, y and z, each > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radii: Option<Spanned<Vector>>,
@@ -181,6 +202,8 @@ impl ObjectDesc {
             cap_radius: None,
             open: None,
             hole: None,
+            children: None,
+            inverse: None,
             radii: None,
             major: None,
             minor: None,
@@ -201,4 +224,9 @@ impl ObjectDesc {
             exterior: None,
         }
     }
+}
+
+/// A missing `material`: empty, at no place.
+fn no_material() -> Spanned<String> {
+    Spanned::new(0..0, String::new())
 }

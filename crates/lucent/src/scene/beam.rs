@@ -100,7 +100,7 @@ impl Scene {
     /// BVH of packed triangles.
     fn cut_of(&self, p: u32, frustum: &Frustum, budget: usize) -> Option<Cut> {
         match self.primitives[p as usize] {
-            Primitive::Sphere(_) | Primitive::Solid(_) => None,
+            Primitive::Sphere(_) | Primitive::Solid(_) | Primitive::Csg(_) => None,
             Primitive::Merged => self.merged.as_ref()?.entry.accel.cut(frustum, budget),
             Primitive::Instance(k) => {
                 let instance = &self.instances[k as usize].0;

@@ -10,7 +10,8 @@ use crate::light::{AreaLights, Emitters, EnvironmentLight, Light};
 use crate::material::Material;
 use crate::motion::Motion;
 use crate::shape::{
-    Instance, Mesh, Plane, Primitive, Solid, Sphere, SphereMap, Transform, TriangleTest, triangle,
+    Csg, Instance, Mesh, Plane, Primitive, Solid, Sphere, SphereMap, Transform, TriangleTest,
+    triangle,
 };
 use crate::texture::ImageTexture;
 use crate::texture::image::LatLongTexels;
@@ -34,6 +35,7 @@ pub struct SceneBuilder {
     spheres: Vec<(Sphere, ObjectTag)>,
     sphere_maps: Vec<SphereMap>,
     pub(super) solids: Vec<(Solid, ObjectTag)>,
+    pub(super) csgs: Vec<(Csg, ObjectTag)>,
     planes: Vec<(Plane, ObjectTag)>,
     meshes: Vec<Mesh>,
     instances: Vec<(u32, Affine3A, ObjectTag)>,
@@ -62,6 +64,7 @@ impl SceneBuilder {
             spheres: vec![],
             sphere_maps: vec![],
             solids: vec![],
+            csgs: vec![],
             planes: vec![],
             meshes: vec![],
             instances: vec![],
@@ -173,6 +176,11 @@ impl SceneBuilder {
     /// Material `i`, if there is one.
     pub(super) fn material_at(&self, i: u32) -> Option<&Material> {
         self.materials.get(i as usize)
+    }
+
+    /// How many materials there are.
+    pub(super) fn material_count(&self) -> usize {
+        self.materials.len()
     }
 
     /// The motion given for object `object`, if any.
@@ -291,7 +299,8 @@ impl SceneBuilder {
             .iter()
             .map(|s| s.1)
             .chain(self.planes.iter().map(|s| s.1))
-            .chain(self.solids.iter().map(|s| s.1));
+            .chain(self.solids.iter().map(|s| s.1))
+            .chain(self.csgs.iter().map(|s| s.1));
         for tag in tags.chain(self.instances.iter().map(|i| i.2)) {
             if tag.material as usize >= self.materials.len() {
                 let count = self.materials.len();
@@ -354,7 +363,7 @@ impl SceneBuilder {
                 return Err(SceneError::NoSuchImage { image, count });
             }
         }
-        let top = self.spheres.len() + self.instances.len() + self.solids.len();
+        let top = self.spheres.len() + self.instances.len() + self.solids.len() + self.csgs.len();
         if top > u32::MAX as usize {
             return Err(SceneError::TooManyPrimitives(top));
         }
@@ -502,6 +511,10 @@ impl SceneBuilder {
             primitives.push(Primitive::Solid(j as u32));
             boxes.push(s.bounds());
         }
+        for (j, (c, _)) in self.csgs.iter().enumerate() {
+            primitives.push(Primitive::Csg(j as u32));
+            boxes.push(c.bounds());
+        }
         if let Some(m) = &merged {
             primitives.push(Primitive::Merged);
             boxes.push(m.entry.bounds);
@@ -555,6 +568,7 @@ impl SceneBuilder {
             spheres: Arc::new(self.spheres),
             sphere_maps: Arc::new(self.sphere_maps),
             solids: Arc::new(self.solids),
+            csgs: Arc::new(self.csgs),
             planes: Arc::new(self.planes),
             meshes: Arc::new(meshes),
             instances: Arc::new(instances),

@@ -39,7 +39,7 @@ use crate::camera::Camera;
 use crate::light::{Emitters, Light};
 use crate::material::Material;
 use crate::shape::SurfaceHit;
-use crate::shape::{Instance, Mesh, Plane, Primitive, Solid, Sphere, SphereMap, TriangleTest};
+use crate::shape::{Csg, Instance, Mesh, Plane, Primitive, Solid, Sphere, SphereMap, TriangleTest};
 use crate::texture::{ImageTexture, TexCoords};
 use animation::{Animation, Moving};
 use lucent_accel::{Aabb, AccelInfo, AccelKind, AnyAccelerator, WideTriangleBvh};
@@ -200,6 +200,8 @@ pub struct Scene {
     sphere_maps: Arc<Vec<SphereMap>>,
     /// Boxes, cylinders, cones, discs and tori.
     solids: Arc<Vec<(Solid, ObjectTag)>>,
+    /// Solids combined.
+    csgs: Arc<Vec<(Csg, ObjectTag)>>,
     planes: Arc<Vec<(Plane, ObjectTag)>>,
     meshes: Arc<Vec<MeshEntry>>,
     instances: Arc<Vec<(Instance, ObjectTag)>>,
@@ -261,8 +263,10 @@ pub struct SceneCounts {
     pub objects: u32,
     /// Spheres.
     pub spheres: usize,
-    /// Boxes, cylinders, cones, discs and tori.
+    /// Boxes, cylinders, cones, discs, ellipsoids and tori.
     pub solids: usize,
+    /// Combinations of solids.
+    pub csgs: usize,
     /// Infinite planes.
     pub planes: usize,
     /// Distinct triangle meshes stored (single triangles included).
@@ -303,6 +307,7 @@ impl Scene {
             objects: self.objects,
             spheres: self.spheres.len(),
             solids: self.solids.len(),
+            csgs: self.csgs.len(),
             planes: self.planes.len(),
             meshes: self.meshes.len(),
             instances: self.instances.len(),
@@ -480,6 +485,11 @@ impl Scene {
             + merged
             + self.spheres.len() * size_of::<(Sphere, ObjectTag)>()
             + self.solids.len() * size_of::<(Solid, ObjectTag)>()
+            + self
+                .csgs
+                .iter()
+                .map(|c| c.0.leaves() * size_of::<Solid>())
+                .sum::<usize>()
             + self.planes.len() * size_of::<(Plane, ObjectTag)>()
             + self.instances.len() * size_of::<(Instance, ObjectTag)>()
             + self.primitives.len() * size_of::<Primitive>()

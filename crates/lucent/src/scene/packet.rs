@@ -116,7 +116,7 @@ impl Scene {
     /// carried into object space by (`None` for world space), if it has one.
     fn packed_mesh(&self, p: u32) -> Option<(&WideTriangleBvh, Option<crate::shape::Transform>)> {
         let (accel, transform) = match self.primitives[p as usize] {
-            Primitive::Sphere(_) | Primitive::Solid(_) => return None,
+            Primitive::Sphere(_) | Primitive::Solid(_) | Primitive::Csg(_) => return None,
             Primitive::Merged => (&self.merged.as_ref()?.entry.accel, None),
             Primitive::Instance(k) => {
                 let instance = &self.instances[k as usize].0;
@@ -147,7 +147,7 @@ impl Scene {
                 let candidate = Candidate::Triangle(k, i, hit, v, false);
                 nearest.offer(hit.t, self.triangle_key(k, i), candidate)
             }
-            Primitive::Sphere(_) | Primitive::Solid(_) => false,
+            Primitive::Sphere(_) | Primitive::Solid(_) | Primitive::Csg(_) => false,
         }
     }
 }

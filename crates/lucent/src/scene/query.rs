@@ -16,6 +16,8 @@ pub(super) enum Candidate {
     Sphere(u32, f32),
     /// Solid, the crossing's `t` as found (in `f64`), and the part of its surface.
     Solid(u32, f64, u8),
+    /// Combination of solids, and its visible crossing.
+    Csg(u32, crate::shape::CsgHit),
     /// Instance, triangle, hit and vertices in the instance's object space — or in world space
     /// for a merged instance (the last field true).
     Triangle(u32, u32, TriangleHit, [Vec3; 3], bool),
@@ -221,6 +223,10 @@ impl Scene {
                         Some((t, part)) => {
                             nearest.offer(t as f32, self.solid_key(j), Candidate::Solid(j, t, part))
                         }
+                        None => false,
+                    },
+                    Primitive::Csg(j) => match self.csg_hit(j, ray, inclusive(*t_max)) {
+                        Some(h) => nearest.offer(h.t as f32, self.csg_key(j), Candidate::Csg(j, h)),
                         None => false,
                     },
                     Primitive::Instance(k) => {
@@ -451,6 +457,7 @@ impl Scene {
                 }
             }
             Candidate::Solid(j, t, part) => self.solid_surface(j, ray, t, part),
+            Candidate::Csg(j, hit) => self.csg_surface(j, ray, &hit),
             Candidate::Triangle(k, tri, hit, v, world) => {
                 let (instance, tag) = &self.instances[k as usize];
                 let mesh = &self.meshes[instance.mesh as usize].mesh;
@@ -643,6 +650,11 @@ impl Scene {
             Primitive::Solid(j) => {
                 let (solid, tag) = &self.solids[j as usize];
                 let crossings = solid.crossings(ray, t_max).len() as u32;
+                crossings > 0 && blocker(tag.material, crossings)
+            }
+            Primitive::Csg(j) => {
+                let (csg, tag) = &self.csgs[j as usize];
+                let crossings = csg.crossings(ray, t_max);
                 crossings > 0 && blocker(tag.material, crossings)
             }
             Primitive::Instance(k) => {

@@ -16,7 +16,8 @@ pub mod triangle;
 pub use instance::{Instance, Transform};
 pub use mesh::Mesh;
 pub use plane::Plane;
-pub use solid::{Solid, SolidShape};
+pub use solid::csg::{Csg, CsgError, CsgHit, CsgOp, CsgTree};
+pub use solid::{Solid, SolidPoint, SolidShape};
 pub use sphere::{Roots, Sphere, SphereMap};
 pub use triangle::{TriangleHit, TriangleTest};
 
@@ -29,8 +30,10 @@ pub enum Primitive {
     Sphere(u32),
     /// `Scene::instances[i]`: a placed mesh, with an accelerator of its own over its triangles.
     Instance(u32),
-    /// `Scene::solids[i]`: a box, cylinder, cone, disc or torus.
+    /// `Scene::solids[i]`: a box, cylinder, cone, disc, ellipsoid or torus.
     Solid(u32),
+    /// `Scene::csgs[i]`: solids combined.
+    Csg(u32),
     /// The instances stored together in world space (see the scene's module docs).
     Merged,
 }
@@ -112,6 +115,8 @@ pub enum SurfaceId {
     Sphere(u32),
     /// A solid (see [`Solid`]).
     Solid(u32),
+    /// A combination of solids (see [`Csg`]).
+    Csg(u32),
     /// Triangle `index` of instance `instance`.
     Triangle {
         /// The instance.

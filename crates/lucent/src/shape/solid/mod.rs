@@ -12,6 +12,9 @@
 //! solid geometry will need; a closed solid's crossings alternate between entering and leaving.
 
 pub mod cone;
+pub mod csg;
+#[cfg(test)]
+mod csg_tests;
 pub mod cuboid;
 pub mod cylinder;
 pub mod disc;
@@ -233,14 +236,19 @@ impl Solid {
 
     /// Every crossing of `ray` with the surface in `(0, t_max)`, nearest first.
     pub fn crossings(&self, ray: &Ray, t_max: f32) -> Crossings {
+        self.crossings_in(ray, 0.0, f64::from(t_max))
+    }
+
+    /// Every crossing of `ray`'s line with the surface in `(lo, hi)`, in order (`lo` may be
+    /// −∞: what lies behind the origin tells whether it is inside).
+    pub fn crossings_in(&self, ray: &Ray, lo: f64, hi: f64) -> Crossings {
         let mut out = Crossings::new();
         let (o, d) = self.local(ray);
-        let t_max = f64::from(t_max);
-        let Some(range) = self.range(o, d, t_max) else {
+        let Some(range) = self.range(o, d, lo, hi) else {
             return out;
         };
         self.shape.crossings(o, d, range, &mut out);
-        out.retain(|c| c.0 > 0.0 && c.0 < t_max);
+        out.retain(|c| c.0 > lo && c.0 < hi);
         out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         out
     }
@@ -251,12 +259,12 @@ impl Solid {
     }
 
     /// Where the line `o + t·d` (own space) lies in the shape's box (widened by a hair) within
-    /// `[0, t_max]`; `None` when it misses.
-    fn range(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<[f64; 2]> {
+    /// `[t_lo, t_hi]`; `None` when it misses.
+    fn range(&self, o: DVec3, d: DVec3, t_lo: f64, t_hi: f64) -> Option<[f64; 2]> {
         let (lo, hi) = self.shape.bounds();
         let pad = (hi - lo).max_element() * 1e-9;
         let (lo, hi) = (lo - pad, hi + pad);
-        let (mut near, mut far) = (0.0f64, t_max);
+        let (mut near, mut far) = (t_lo, t_hi);
         for axis in 0..3 {
             if d[axis] == 0.0 {
                 if o[axis] < lo[axis] || o[axis] > hi[axis] {
@@ -293,6 +301,16 @@ impl Solid {
             dpdv: (self.to_world.matrix3 * frame.dpdv).as_vec3(),
             error: error.as_vec3(),
         }
+    }
+
+    /// Whether the shape encloses a volume (a disc, an open cylinder or cone do not).
+    pub fn is_closed(&self) -> bool {
+        !matches!(
+            self.shape,
+            SolidShape::Disc { .. }
+                | SolidShape::Cylinder { open: true }
+                | SolidShape::Cone { open: true, .. }
+        )
     }
 
     /// Whether `p` lies inside.
