@@ -1,6 +1,7 @@
 //! The exact solids' cost per ray: a 4 × 4 grid of one kind of object, closest hits of the
 //! same 65,536 rays (from a camera above, aimed into the grid) for each kind, one thread. The
-//! triangle cube and the sphere are the comparisons: the exact box is the cube's own shape.
+//! triangle cube and the sphere are the comparisons: the exact box is the cube's own shape; a
+//! box with a cylinder subtracted is the cost of a combination.
 //! Run: `cargo bench -p lucent-cli --bench solids`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
@@ -11,7 +12,7 @@ use std::hint::black_box;
 use std::path::PathBuf;
 
 /// The object table of each kind, centred at the origin with a size of about 1.
-const KINDS: [(&str, &str); 7] = [
+const KINDS: [(&str, &str); 8] = [
     (
         "sphere",
         "type = \"sphere\"\ncenter = [0, 0, 0]\nradius = 0.5",
@@ -36,6 +37,11 @@ const KINDS: [(&str, &str); 7] = [
     (
         "torus",
         "type = \"torus\"\nmajor = 0.35\nminor = 0.12\nrotate = [40, 0, 0]",
+    ),
+    (
+        "box_minus_cylinder",
+        "type = \"difference\"\nchildren = [{ type = \"box\", min = [-0.4, -0.4, -0.4], max = [0.4, 0.4, 0.4] }, \
+         { type = \"cylinder\", base = [0, -1, 0], cap = [0, 1, 0], radius = 0.2 }]",
     ),
 ];
 

@@ -16,8 +16,8 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
     );
     println!("scene:       {name}");
     println!(
-        "objects:     {} ({} spheres, {} planes, {} mesh instances of {} meshes)",
-        c.objects, c.spheres, c.planes, c.instances, c.meshes
+        "objects:     {} ({} spheres, {} planes, {} mesh instances of {} meshes, {} exact solids, {} combinations)",
+        c.objects, c.spheres, c.planes, c.instances, c.meshes, c.solids, c.csgs
     );
     println!(
         "triangles:   {} ({} stored)",

@@ -111,7 +111,7 @@ fn info_counts_the_default_scene() {
     assert_success(&output);
     let stdout = String::from_utf8(output.stdout).unwrap();
     assert!(
-        stdout.contains("objects:     3 (2 spheres, 1 planes, 0 mesh instances of 0 meshes)"),
+        stdout.contains("objects:     3 (2 spheres, 1 planes, 0 mesh instances of 0 meshes, 0 exact solids, 0 combinations)"),
         "{stdout}"
     );
     assert!(stdout.contains("lights:      2"), "{stdout}");
