@@ -81,7 +81,7 @@ pub struct ObjectDesc {
     pub kind: ObjectKind,
     /// The name of its material (a combination's child without one wears its parent's; at the
     /// top level it is required, which the build checks: empty here when not given).
-    #[serde(default = "no_material")]
+    #[serde(default = "no_material", skip_serializing_if = "is_unnamed")]
     pub material: Spanned<String>,
     /// Sphere: centre.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -229,4 +229,9 @@ impl ObjectDesc {
 /// A missing `material`: empty, at no place.
 fn no_material() -> Spanned<String> {
     Spanned::new(0..0, String::new())
+}
+
+/// Whether no material is named (a child wearing its parent's).
+fn is_unnamed(m: &Spanned<String>) -> bool {
+    m.get_ref().is_empty()
 }
