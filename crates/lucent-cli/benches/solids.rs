@@ -12,7 +12,7 @@ use std::hint::black_box;
 use std::path::PathBuf;
 
 /// The object table of each kind, centred at the origin with a size of about 1.
-const KINDS: [(&str, &str); 8] = [
+const KINDS: [(&str, &str); 9] = [
     (
         "sphere",
         "type = \"sphere\"\ncenter = [0, 0, 0]\nradius = 0.5",
@@ -37,6 +37,10 @@ const KINDS: [(&str, &str); 8] = [
     (
         "torus",
         "type = \"torus\"\nmajor = 0.35\nminor = 0.12\nrotate = [40, 0, 0]",
+    ),
+    (
+        "superellipsoid",
+        "type = \"superellipsoid\"\nexponents = [0.3, 0.6]\nscale = 0.45",
     ),
     (
         "box_minus_cylinder",

@@ -18,6 +18,17 @@ fn scene(objects: &str) -> Scene {
     file.build().unwrap().scene
 }
 
+/// Each case's objects refused with an error that starts at its place and names its cause.
+fn assert_refused(cases: &[(&str, &str, &str)]) {
+    for &(objects, place, cause) in cases {
+        let e = error(objects);
+        assert!(
+            e.starts_with(place) && e.contains(cause),
+            "{e}\nwanted {place} … {cause}"
+        );
+    }
+}
+
 fn error(objects: &str) -> String {
     let text = format!("{HEAD}{objects}");
     let file = SceneFile::parse(PathBuf::from("bad.toml"), PathBuf::new(), text).unwrap();
@@ -80,6 +91,23 @@ fn a_cone_box_and_disc_are_hit_at_their_known_distances() {
     );
 }
 
+#[test]
+fn a_superellipsoid_of_exponents_2_is_the_octahedron_placed() {
+    let s = scene(
+        "[[object]]\ntype = \"superellipsoid\"\nexponents = [2, 2]\nscale = 2\ntranslate = [0, 1, 0]\nmaterial = \"m\"\n",
+    );
+    // |x| + |y − 1| + |z| = 2 (scaled by 2): down the y axis at x = 0.5, z = 0.5 the top face
+    // is at y = 2.
+    let ray = Ray::new(Vec3::new(0.5, 5.0, 0.5), Vec3::NEG_Y);
+    let hit = s.intersect(&ray, &mut TraversalStats::default()).unwrap();
+    assert!((hit.t - 3.0).abs() < 1e-5, "{}", hit.t);
+    assert!(
+        (hit.normal - Vec3::ONE.normalize()).length() < 1e-5,
+        "{}",
+        hit.normal
+    );
+}
+
 /// Follows `ray` through the scene, crossing every surface straight on, and counts the
 /// crossings until it escapes.
 fn crossings(s: &Scene, mut ray: Ray) -> u32 {
@@ -105,6 +133,7 @@ fn every_ray_that_enters_a_closed_solid_leaves_it() {
          [[object]]\ntype = \"cylinder\"\nbase = [3, -1, 0]\ncap = [3.5, 1, 0.2]\nradius = 0.6\nmaterial = \"m\"\n\
          [[object]]\ntype = \"cone\"\nbase = [-3, -1, 0]\ncap = [-3, 1, 0.5]\nbase_radius = 0.8\ncap_radius = 0.2\nmaterial = \"m\"\n\
          [[object]]\ntype = \"box\"\nmin = [-1, 2, -1]\nmax = [1, 3, 1]\nrotate = [10, 40, 0]\nmaterial = \"m\"\n\
+         [[object]]\ntype = \"superellipsoid\"\nexponents = [0.3, 1.7]\nscale = [0.8, 0.5, 0.6]\nrotate = [0, 30, 20]\ntranslate = [3, 2.5, 0]\nmaterial = \"m\"\n\
          [[object]]\ntype = \"difference\"\nmaterial = \"m\"\nrotate = [20, 0, 30]\ntranslate = [0, -1.2, 0]\nchildren = [\
            { type = \"merge\", children = [{ type = \"sphere\", center = [0, 0, 0], radius = 0.8 }, { type = \"box\", min = [0, -0.5, -0.5], max = [1.2, 0.5, 0.5] }] },\
            { type = \"cylinder\", base = [0, 0, -2], cap = [0, 0, 2], radius = 0.3 },\
@@ -206,13 +235,7 @@ fn bad_combinations_are_refused_at_their_keys() {
             "a box needs `material`",
         ),
     ];
-    for (objects, place, cause) in cases {
-        let e = error(objects);
-        assert!(
-            e.starts_with(place) && e.contains(cause),
-            "{e}\nwanted {place} … {cause}"
-        );
-    }
+    assert_refused(&cases);
 }
 
 #[test]
@@ -249,6 +272,11 @@ fn bad_solids_are_refused_at_their_keys() {
             "`minor` must be between",
         ),
         (
+            "[[object]]\ntype = \"superellipsoid\"\nexponents = [0, 1]\nmaterial = \"m\"\n",
+            "bad.toml:9:13:",
+            "`exponents` must each be from 0.01 to 10",
+        ),
+        (
             "[[object]]\ntype = \"torus\"\nmajor = 1\nminor = 0.5\nradius = 2\nmaterial = \"m\"\n",
             "bad.toml:11:10:",
             "`radius` does not apply to a torus",
@@ -264,13 +292,7 @@ fn bad_solids_are_refused_at_their_keys() {
             "a cylinder cannot be an area light yet",
         ),
     ];
-    for (objects, place, cause) in cases {
-        let e = error(objects);
-        assert!(
-            e.starts_with(place) && e.contains(cause),
-            "{e}\nwanted {place} … {cause}"
-        );
-    }
+    assert_refused(&cases);
 }
 
 /// The scene's image, as linear pixels.

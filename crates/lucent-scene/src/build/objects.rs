@@ -262,6 +262,7 @@ pub(super) fn check_keys(
         ("open", d.open.map(|_| o.span())),
         ("hole", span(&d.hole)),
         ("radii", span(&d.radii)),
+        ("exponents", span(&d.exponents)),
         ("major", span(&d.major)),
         ("minor", span(&d.minor)),
         ("children", span(&d.children)),

@@ -21,6 +21,7 @@ pub(super) fn is_solid(kind: ObjectKind) -> bool {
             | ObjectKind::Disc
             | ObjectKind::Torus
             | ObjectKind::Ellipsoid
+            | ObjectKind::Superellipsoid
     )
 }
 
@@ -33,6 +34,7 @@ pub(super) fn keys(kind: ObjectKind) -> impl Iterator<Item = &'static str> {
         ObjectKind::Disc => &["center", "normal", "radius", "hole"],
         ObjectKind::Torus => &["major", "minor"],
         ObjectKind::Ellipsoid => &["center", "radii"],
+        ObjectKind::Superellipsoid => &["exponents"],
         _ => &[],
     };
     keys.iter().copied()
@@ -235,6 +237,25 @@ fn own_shape(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<OwnSh
                 shape: SolidShape::Ellipsoid,
                 linear: glam::Mat3A::from_diagonal(Vec3::splat(r)),
                 origin: center,
+            }
+        }
+        ObjectKind::Superellipsoid => {
+            let x = required(source, table.clone(), kind, "exponents", &d.exponents)?;
+            let [e, n] = x.get_ref().map(|v| v.0);
+            check(
+                source,
+                x.span(),
+                [e, n].iter().all(|v| (0.01..=10.0).contains(v)),
+                &format!(
+                    "a superellipsoid's `exponents` must each be from 0.01 to 10, got [{e}, {n}]"
+                ),
+            )?;
+            OwnShape {
+                shape: SolidShape::Superellipsoid {
+                    exponents: [f64::from(e), f64::from(n)],
+                },
+                linear: glam::Mat3A::IDENTITY,
+                origin: DVec3::ZERO,
             }
         }
         ObjectKind::Ellipsoid => {

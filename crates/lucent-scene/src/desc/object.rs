@@ -34,6 +34,8 @@ pub enum ObjectKind {
     Torus,
     /// `center`, `radii` (along x, y, z), and a placement.
     Ellipsoid,
+    /// `exponents` (`[e, n]`, POV-Ray's) in the cube `[-1, 1]³`, and a placement.
+    Superellipsoid,
     /// `children` (two or more), all their surfaces; a placement.
     Union,
     /// `children`: where all of them are; a placement.
@@ -61,6 +63,7 @@ impl ObjectKind {
             ObjectKind::Disc => "disc",
             ObjectKind::Torus => "torus",
             ObjectKind::Ellipsoid => "ellipsoid",
+            ObjectKind::Superellipsoid => "superellipsoid",
             ObjectKind::Union => "union",
             ObjectKind::Intersection => "intersection",
             ObjectKind::Difference => "difference",
@@ -126,6 +129,9 @@ pub struct ObjectDesc {
     /// A combination's child: turned inside out (default false).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inverse: Option<bool>,
+    /// Superellipsoid: `[e, n]`, the exponents across and along z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exponents: Option<Spanned<[Finite; 2]>>,
     /// Ellipsoid: its radii along x, y and z, each > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radii: Option<Spanned<Vector>>,
@@ -205,6 +211,7 @@ impl ObjectDesc {
             children: None,
             inverse: None,
             radii: None,
+            exponents: None,
             major: None,
             minor: None,
             point: None,

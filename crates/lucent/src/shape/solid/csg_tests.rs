@@ -121,12 +121,15 @@ fn solid(kind: usize) -> SolidShape {
         },
         SolidShape::Ellipsoid,
         SolidShape::Torus { minor: 0.4 },
+        SolidShape::Superellipsoid {
+            exponents: [0.3, 2.5],
+        },
     ][kind]
 }
 
 fn placed() -> impl Strategy<Value = CsgTree> {
     (
-        0usize..5,
+        0usize..6,
         proptest::array::uniform3(-1.0f32..1.0),
         0.0f32..6.3,
         proptest::array::uniform3(0.4f32..1.5),

@@ -1,4 +1,5 @@
-//! Mathematical solids: boxes, cylinders, cones, discs, ellipsoids and tori, each the canonical
+//! Mathematical solids: boxes, cylinders, cones, discs, ellipsoids, superellipsoids and tori,
+//! each the canonical
 //! shape of its file placed in the world by an affine transform.
 //!
 //! A ray is taken into the solid's own space in `f64` and met there with the shape's equation
@@ -20,6 +21,7 @@ pub mod cylinder;
 pub mod disc;
 pub mod ellipsoid;
 pub mod poly;
+pub mod superellipsoid;
 #[cfg(test)]
 mod tests;
 pub mod torus;
@@ -77,6 +79,11 @@ pub enum SolidShape {
     },
     /// The unit sphere, an ellipsoid once placed ([`ellipsoid`]).
     Ellipsoid,
+    /// Barr's superellipsoid in the cube `[-1, 1]³` ([`superellipsoid`]).
+    Superellipsoid {
+        /// `[e, n]`: the exponents across and along z, > 0.
+        exponents: [f64; 2],
+    },
     /// Major radius 1 about z, tube radius `minor` ([`torus`]).
     Torus {
         /// The tube's radius, > 0.
@@ -93,6 +100,7 @@ impl SolidShape {
             SolidShape::Cone { .. } => "cone",
             SolidShape::Disc { .. } => "disc",
             SolidShape::Ellipsoid => "ellipsoid",
+            SolidShape::Superellipsoid { .. } => "superellipsoid",
             SolidShape::Torus { .. } => "torus",
         }
     }
@@ -107,7 +115,9 @@ impl SolidShape {
                 (DVec3::new(-r, -r, 0.0), DVec3::new(r, r, 1.0))
             }
             SolidShape::Disc { .. } => (DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 0.0)),
-            SolidShape::Ellipsoid => (DVec3::splat(-1.0), DVec3::ONE),
+            SolidShape::Ellipsoid | SolidShape::Superellipsoid { .. } => {
+                (DVec3::splat(-1.0), DVec3::ONE)
+            }
             SolidShape::Torus { minor } => torus::bounds(minor),
         }
     }
@@ -120,6 +130,9 @@ impl SolidShape {
             SolidShape::Cone { radii, open } => cone::crossings(o, d, radii, open, out),
             SolidShape::Disc { hole } => disc::crossings(o, d, hole, out),
             SolidShape::Ellipsoid => ellipsoid::crossings(o, d, out),
+            SolidShape::Superellipsoid { exponents } => {
+                superellipsoid::crossings(o, d, exponents, range, out)
+            }
             SolidShape::Torus { minor } => torus::crossings(o, d, minor, range, out),
         }
     }
@@ -132,6 +145,7 @@ impl SolidShape {
             SolidShape::Cone { radii, .. } => cone::normal(p, radii, part),
             SolidShape::Disc { .. } => DVec3::Z,
             SolidShape::Ellipsoid => p,
+            SolidShape::Superellipsoid { exponents } => superellipsoid::normal(p, exponents),
             SolidShape::Torus { minor } => torus::normal(p, minor),
         }
     }
@@ -143,6 +157,7 @@ impl SolidShape {
             SolidShape::Cone { radii, .. } => cone::frame(p, radii, part),
             SolidShape::Disc { .. } => disc::frame(p),
             SolidShape::Ellipsoid => ellipsoid::frame(p),
+            SolidShape::Superellipsoid { exponents } => superellipsoid::frame(p, exponents),
             SolidShape::Torus { .. } => torus::frame(p),
         }
     }
@@ -156,6 +171,7 @@ impl SolidShape {
             SolidShape::Cone { radii, .. } => cone::contains(p, radii),
             SolidShape::Disc { .. } => false,
             SolidShape::Ellipsoid => ellipsoid::contains(p),
+            SolidShape::Superellipsoid { exponents } => superellipsoid::contains(p, exponents),
             SolidShape::Torus { minor } => torus::contains(p, minor),
         }
     }

@@ -26,6 +26,9 @@ fn shapes() -> Vec<SolidShape> {
         SolidShape::Torus { minor: 0.3 },
         SolidShape::Torus { minor: 1.2 },
         SolidShape::Ellipsoid,
+        SolidShape::Superellipsoid {
+            exponents: [0.4, 1.6],
+        },
     ]
 }
 
@@ -198,7 +201,7 @@ proptest! {
     /// outside.
     #[test]
     fn crossings_alternate_and_agree_with_the_inside_test(
-        which in 0usize..7,
+        which in 0usize..8,
         axis in proptest::array::uniform3(-1.0f32..1.0),
         angle in 0.0f32..6.3,
         scale in proptest::array::uniform3(0.3f32..3.0),
@@ -233,7 +236,7 @@ proptest! {
     /// meets the surface again only as far on as the shape allows: no crossing at its start.
     #[test]
     fn rays_leaving_a_surface_start_on_their_side(
-        which in 0usize..7,
+        which in 0usize..8,
         axis in proptest::array::uniform3(-1.0f32..1.0),
         angle in 0.0f32..6.3,
         scale in proptest::array::uniform3(0.3f32..3.0),
