@@ -9,8 +9,12 @@ import time
 
 from conftest import EXAMPLES
 
+# The child takes Ctrl-C as Python's KeyboardInterrupt whatever it inherited: a process started
+# with SIGINT ignored (as a shell's background jobs are) passes that on, and Python then
+# installs no handler of its own.
 SCRIPT = """
-import json, sys, warnings
+import json, signal, sys, warnings
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import lucent
 started = False
 def progress(done, total):
