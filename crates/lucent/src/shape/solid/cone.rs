@@ -45,12 +45,9 @@ pub fn frame(p: DVec3, [r0, r1]: [f64; 2], part: u8) -> Frame {
         return cap_frame(p);
     }
     let k = r1 - r0;
-    let r = (p.x * p.x + p.y * p.y).sqrt();
-    let out = if r > 0.0 {
-        DVec3::new(p.x / r, p.y / r, 0.0)
-    } else {
-        DVec3::ZERO
-    };
+    // On the axis (the apex) the slant has no direction.
+    let (r, out) = cylinder::from_axis(p);
+    let out = if r > 0.0 { out } else { DVec3::ZERO };
     Frame {
         uv: DVec2::new(cylinder::turn(p), p.z),
         dpdu: DVec3::new(-p.y, p.x, 0.0) * TAU,

@@ -69,6 +69,17 @@ pub fn turn(p: DVec3) -> f64 {
     if u < 0.0 { u + 1.0 } else { u }
 }
 
+/// The distance of `p` from the z axis, and the unit direction from the axis towards it in
+/// the plane z = 0 (`+x` on the axis itself).
+pub fn from_axis(p: DVec3) -> (f64, DVec3) {
+    let rho = (p.x * p.x + p.y * p.y).sqrt();
+    if rho > 0.0 {
+        (rho, DVec3::new(p.x / rho, p.y / rho, 0.0))
+    } else {
+        (rho, DVec3::X)
+    }
+}
+
 /// Whether `p` lies inside the closed cylinder.
 pub fn contains(p: DVec3) -> bool {
     p.x * p.x + p.y * p.y < 1.0 && p.z > 0.0 && p.z < 1.0

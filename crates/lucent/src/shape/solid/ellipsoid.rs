@@ -18,16 +18,11 @@ pub fn crossings(o: DVec3, d: DVec3, out: &mut Crossings) {
 
 /// Mitsuba's sphere coordinates and their derivatives at `p` (on the unit sphere).
 pub fn frame(p: DVec3) -> Frame {
-    let rho = (p.x * p.x + p.y * p.y).sqrt();
-    let (cos_phi, sin_phi) = if rho > 0.0 {
-        (p.x / rho, p.y / rho)
-    } else {
-        (1.0, 0.0)
-    };
+    let (rho, out) = cylinder::from_axis(p);
     Frame {
         uv: DVec2::new(cylinder::turn(p), p.z.clamp(-1.0, 1.0).acos() / PI),
         dpdu: DVec3::new(-p.y, p.x, 0.0) * TAU,
-        dpdv: DVec3::new(p.z * cos_phi, p.z * sin_phi, -rho) * PI,
+        dpdv: (out * p.z - DVec3::Z * rho) * PI,
     }
 }
 

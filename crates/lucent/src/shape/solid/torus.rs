@@ -44,17 +44,12 @@ pub fn normal(p: DVec3, r: f64) -> DVec3 {
 /// `u` the turn about the z axis from `+x`, `v` the turn about the tube from its outer
 /// equator towards `+z`.
 pub fn frame(p: DVec3) -> Frame {
-    let rho = (p.x * p.x + p.y * p.y).sqrt();
+    let (rho, out) = cylinder::from_axis(p);
     let v = p.z.atan2(rho - 1.0) / TAU;
-    let (cos_phi, sin_phi) = if rho > 0.0 {
-        (p.x / rho, p.y / rho)
-    } else {
-        (1.0, 0.0)
-    };
     Frame {
         uv: DVec2::new(cylinder::turn(p), if v < 0.0 { v + 1.0 } else { v }),
         dpdu: DVec3::new(-p.y, p.x, 0.0) * TAU,
-        dpdv: DVec3::new(-p.z * cos_phi, -p.z * sin_phi, rho - 1.0) * TAU,
+        dpdv: (DVec3::Z * (rho - 1.0) - out * p.z) * TAU,
     }
 }
 
