@@ -97,8 +97,8 @@ fn vector_of_the_wrong_length() {
 
 #[test]
 fn unknown_object_type() {
-    let text = format!("{CAMERA}{MATERIAL}[[object]]\ntype = \"cone\"\nmaterial = \"m\"\n");
-    assert_error(&text, 8, 8, "unknown variant `cone`");
+    let text = format!("{CAMERA}{MATERIAL}[[object]]\ntype = \"pyramid\"\nmaterial = \"m\"\n");
+    assert_error(&text, 8, 8, "unknown variant `pyramid`");
 }
 
 #[test]
