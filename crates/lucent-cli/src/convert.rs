@@ -20,6 +20,7 @@ pub fn run(args: &ConvertArgs) -> anyhow::Result<ExitCode> {
     let options = LoadOptions {
         sandbox: args.sandbox,
         limits: crate::cli::limits_of(&args.limits),
+        image_size: None,
     };
     let mut file = SceneFile::read_with(&args.input, &options)?;
     let framing_warning = crate::job::frame(&mut file, &args.framing);

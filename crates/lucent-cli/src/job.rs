@@ -39,6 +39,8 @@ impl Job {
         let options = LoadOptions {
             sandbox: overrides.sandbox,
             limits: crate::cli::limits_of(&overrides.limits),
+            // A POV-Ray scene's `image_width` and `image_height`.
+            image_size: overrides.width.zip(overrides.height),
         };
         let file = match scene {
             Some(p) => SceneFile::read_with(p, &options)?,

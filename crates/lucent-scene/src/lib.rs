@@ -26,6 +26,7 @@ pub mod obj;
 pub mod overrides;
 pub mod paths;
 pub mod ply;
+pub mod povray;
 pub mod serialized;
 pub mod tangents;
 pub mod vol;
@@ -79,7 +80,7 @@ pub struct SceneFile {
 }
 
 /// The scene formats lucent reads, by extension.
-pub const SCENE_EXTENSIONS: [&str; 6] = ["toml", "obj", "ply", "gltf", "glb", "xml"];
+pub const SCENE_EXTENSIONS: [&str; 7] = ["toml", "obj", "ply", "gltf", "glb", "xml", "pov"];
 
 /// An error when `desc` holds more objects than the budget allows, before they are built.
 fn within_objects_budget(
@@ -121,11 +122,12 @@ impl SceneFile {
             Some("ply") => Some(mesh_import::import_ply(path)),
             Some("gltf" | "glb") => Some(gltf_file::import_gltf(path, options, &mut inputs)?),
             Some("xml") => Some(mitsuba::import_mitsuba(path, options, &mut inputs)?),
+            Some("pov") => Some(povray::import_povray(path, options, &mut inputs)?),
             Some(other) => {
                 return Err(LoadError::file(
                     path,
                     format!(
-                        "unknown scene format `.{other}` (lucent reads .toml, .obj, .ply, .gltf, .glb and Mitsuba .xml)"
+                        "unknown scene format `.{other}` (lucent reads .toml, .obj, .ply, .gltf, .glb, Mitsuba .xml and POV-Ray .pov)"
                     ),
                 ));
             }

@@ -11,6 +11,9 @@ pub struct LoadOptions {
     pub sandbox: bool,
     /// The budgets the scene is held to.
     pub limits: crate::limits::Limits,
+    /// The image's size when the caller knows it before reading (a POV-Ray scene's
+    /// `image_width` and `image_height`).
+    pub image_size: Option<(u32, u32)>,
 }
 
 /// `name` (as written in a scene file) resolved against `base_dir`; with `options.sandbox`, an

@@ -52,6 +52,7 @@ const HEAD: usize = 64 << 10;
 const SANDBOX: LoadOptions = LoadOptions {
     sandbox: true,
     limits: lucent_scene::Limits::DEFAULT,
+    image_size: None,
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -164,6 +164,12 @@ struct CheckerDesc {
     even: Color,
     odd: Color,
     size: Finite,
+    /// In world coordinates on planes too (POV-Ray's checker), not the plane's own frame.
+    #[serde(default)]
+    world: bool,
+    /// The world placed in the checker's space (implies `world`).
+    #[serde(default)]
+    transform: Option<super::Matrix>,
 }
 
 #[derive(Deserialize)]
@@ -459,6 +465,10 @@ impl<'de> Visitor<'de> for TextureVisitor {
                     even: c.even.0,
                     odd: c.odd.0,
                     size: c.size.0,
+                    world: match c.transform {
+                        Some(m) => Some(glam::Affine3A::from_mat4(m.0.as_mat4())),
+                        None => c.world.then_some(glam::Affine3A::IDENTITY),
+                    },
                 })
             }
             "checkerboard" => {
@@ -494,6 +504,10 @@ struct CheckerOut {
     even: Color,
     odd: Color,
     size: Finite,
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    world: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    transform: Option<super::Matrix>,
 }
 
 #[derive(Serialize)]
@@ -527,6 +541,11 @@ impl Serialize for TextureDesc {
                         even: Color(c.even),
                         odd: Color(c.odd),
                         size: Finite(c.size),
+                        world: c.world == Some(glam::Affine3A::IDENTITY),
+                        transform: c
+                            .world
+                            .filter(|m| *m != glam::Affine3A::IDENTITY)
+                            .map(|m| super::Matrix(glam::Mat4::from(m).as_dmat4())),
                     },
                 )?;
                 m.end()

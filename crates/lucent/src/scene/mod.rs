@@ -354,6 +354,7 @@ impl Scene {
     pub fn tex_coords(&self, m: &Material, hit: &SurfaceHit, footprint: f32) -> TexCoords {
         let mut at = TexCoords {
             p: hit.texture_coords,
+            world: self.in_world(hit.point),
             uv: glam::Vec2::ZERO,
             duv: [glam::Vec2::ZERO; 2],
             color: hit.color,

@@ -18,10 +18,30 @@ pub struct Checker {
     pub odd: Rgb,
     /// Side length of a cube, positive.
     pub size: f32,
+    /// With a transform, the cubes lie in the space it takes world positions to, on every
+    /// shape (planes too: POV-Ray's `checker`), and a point within [`ON_THE_EDGE`] of a cube's
+    /// lower face counts as inside it, so a plane on a grid line shows one cell, not rounding
+    /// noise. Without one, in solid coordinates (a plane's own frame on planes).
+    pub world: Option<glam::Affine3A>,
 }
 
+/// How close (in cells) under a cell's lower face a point may be and count as inside it.
+pub const ON_THE_EDGE: f32 = 1e-5;
+
 impl Checker {
-    /// The colour at `p`.
+    /// The colour at world position `world`, solid coordinates `p`.
+    pub fn eval_at(&self, p: Vec3, world: Vec3) -> Rgb {
+        match self.world {
+            Some(m) => {
+                let cell = (m.transform_point3(world) / self.size + ON_THE_EDGE).floor();
+                let parity = (cell.x + cell.y + cell.z).rem_euclid(2.0);
+                if parity < 0.5 { self.even } else { self.odd }
+            }
+            None => self.eval(p),
+        }
+    }
+
+    /// The colour at solid coordinates `p`.
     pub fn eval(&self, p: Vec3) -> Rgb {
         let cell = (p / self.size).floor();
         let parity = (cell.x + cell.y + cell.z).rem_euclid(2.0);
@@ -62,6 +82,7 @@ mod tests {
             even: Rgb::WHITE,
             odd: Rgb::BLACK,
             size: 2.0,
+            world: None,
         };
         assert_eq!(c.eval(Vec3::new(0.5, 0.5, 0.0)), Rgb::WHITE);
         assert_eq!(c.eval(Vec3::new(2.5, 0.5, 0.0)), Rgb::BLACK);

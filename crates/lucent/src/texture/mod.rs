@@ -27,6 +27,8 @@ use glam::{Vec2, Vec3};
 pub struct TexCoords {
     /// Solid-texture coordinates: the world position, or a plane's own 2D frame.
     pub p: Vec3,
+    /// The world position (a plane's too): where textures placed in the world look.
+    pub world: Vec3,
     /// Texture coordinates.
     pub uv: Vec2,
     /// How `uv` changes from one pixel to the next across the image, along x and y; zero for
@@ -41,6 +43,7 @@ impl TexCoords {
     pub fn at(p: Vec3, uv: Vec2) -> Self {
         Self {
             p,
+            world: p,
             uv,
             duv: [Vec2::ZERO; 2],
             color: Rgb::WHITE,
@@ -184,7 +187,7 @@ impl Texture {
     fn eval_varying(&self, at: &TexCoords, images: &[ImageTexture]) -> Rgb {
         match self {
             Texture::Solid(c) => *c,
-            Texture::Checker(c) => c.eval(at.p),
+            Texture::Checker(c) => c.eval_at(at.p, at.world),
             Texture::UvChecker(c) => c.eval(at.uv),
             Texture::Image(m) => m.eval(at, images),
             Texture::VertexColor => at.color,

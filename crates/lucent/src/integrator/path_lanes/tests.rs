@@ -27,6 +27,7 @@ fn mixed_scene() -> Scene {
                 even: Rgb::new(0.9, 0.8, 0.1),
                 odd: Rgb::BLACK,
                 size: 0.3,
+                world: None,
             }),
         },
         ..Material::default()
@@ -67,6 +68,7 @@ fn mixed_scene() -> Scene {
         even: Rgb::gray(0.4),
         odd: Rgb::gray(0.02),
         size: 0.2,
+        world: None,
     });
     let ggx = b.material(rough(Distribution::Ggx, ggx_alpha));
     let beckmann = b.material(rough(Distribution::Beckmann, Texture::from(0.3)));
@@ -93,6 +95,7 @@ fn mixed_scene() -> Scene {
                     even: Rgb::new(0.1, 0.5, 0.8),
                     odd: Rgb::new(0.9, 0.9, 0.2),
                     size: 0.15,
+                    world: None,
                 }),
                 eta: 1.6,
                 specular: Texture::from(1.0),

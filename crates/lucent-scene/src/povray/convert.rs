@@ -1,0 +1,648 @@
+//! The POV-Ray scene as a lucent description: POV-Ray's left-handed space mirrored into
+//! lucent's right-handed one (z negated), its camera vectors turned into an eye, a look-at
+//! point and a field of view, its lights and objects into lucent's, and each distinct texture
+//! into a `whitted` material whose coefficients are POV-Ray's lighting terms
+//! (`docs/povray.md` lists each term and how it is mapped).
+
+use super::lexer::Loc;
+use super::scene::{Camera, CsgKind, Light, LightKind as PovLight, Object, PovScene, Shape};
+use super::texture::{Finish, Pattern, Pigment, Texture};
+use super::value::Vect;
+use crate::desc::{
+    CameraDesc, Color, FalloffName, Finite, ImageDesc, LightDesc, LightKind, MaterialDesc, Matrix,
+    ObjectDesc, ObjectKind, Point, RenderDesc, SceneDesc, TextureDesc, Vector, WorldDesc,
+};
+use crate::error::LoadError;
+use glam::{DAffine3, DMat3, DMat4, DVec3, Vec3};
+use lucent::Rgb;
+use lucent::texture::Checker;
+use std::collections::HashMap;
+use std::rc::Rc;
+use toml::Spanned;
+
+/// Most point lights one `area_light` becomes (POV-Ray's grid of lights, unjittered).
+const MAX_AREA_LIGHTS: u32 = 64;
+
+/// The mirror between POV-Ray's space and lucent's.
+const FLIP: DVec3 = DVec3::new(1.0, 1.0, -1.0);
+
+fn point(p: DVec3) -> DVec3 {
+    p * FLIP
+}
+
+fn affine(m: &DAffine3) -> DAffine3 {
+    let s = DAffine3::from_scale(FLIP);
+    s * *m * s
+}
+
+fn span<T>(v: T) -> Spanned<T> {
+    Spanned::new(0..0, v)
+}
+
+fn rgb(v: DVec3) -> Rgb {
+    Rgb::new(v.x as f32, v.y as f32, v.z as f32)
+}
+
+/// The conversion's state: the materials made so far, by their settings.
+struct Convert<'a> {
+    materials: Vec<Spanned<MaterialDesc>>,
+    by_key: HashMap<String, String>,
+    warnings: &'a mut Vec<String>,
+    default_finish: Finish,
+    default_pigment: Option<Rc<Pigment>>,
+    ambient_light: DVec3,
+}
+
+/// The description of `scene` at `size` pixels.
+pub fn convert(
+    scene: &PovScene,
+    defaults: &super::scene::Defaults,
+    size: (u32, u32),
+    warnings: &mut Vec<String>,
+    file: &Loc,
+) -> Result<SceneDesc, LoadError> {
+    let ambient_light = scene.ambient_light.unwrap_or(DVec3::ONE);
+    let mut cx = Convert {
+        materials: Vec::new(),
+        by_key: HashMap::new(),
+        warnings,
+        default_finish: defaults.finish.clone(),
+        default_pigment: defaults.pigment.clone(),
+        ambient_light,
+    };
+    if let Some(g) = scene.assumed_gamma
+        && (g - 1.0).abs() > 1e-6
+    {
+        cx.warn(file, format!("assumed_gamma {g}: lucent lights in linear colour (assumed_gamma 1), so the image differs from POV-Ray's"));
+    }
+    let camera = match &scene.camera {
+        Some(c) => camera(c, size, cx.warnings)?,
+        None => camera(&default_camera(file), size, cx.warnings)?,
+    };
+    let mut objects = Vec::new();
+    let mut lights: Vec<Spanned<LightDesc>> = Vec::new();
+    for l in &scene.lights {
+        lights.extend(light(l, &mut cx).into_iter().map(span));
+    }
+    for o in &scene.objects {
+        cx.collect_lights(o, &DAffine3::IDENTITY, &mut lights);
+        if let Some(d) = cx.object(o, None, &DAffine3::IDENTITY, true)? {
+            objects.extend(d.into_iter().map(span));
+        }
+    }
+    let background = scene
+        .background
+        .map(|c| rgb(c.v3()))
+        .or_else(|| {
+            scene.sky.as_ref().map(|p| {
+                cx.warn(&p.loc, "a sky_sphere is shown as the background's one colour (its pigment's average)");
+                rgb(p.average().v3())
+            })
+        })
+        .unwrap_or(Rgb::BLACK);
+    let render = RenderDesc {
+        max_depth: span(scene.max_trace_level.unwrap_or(5)),
+        min_weight: span(Finite(scene.adc_bailout.unwrap_or(1.0 / 255.0) as f32)),
+        ..RenderDesc::default()
+    };
+    Ok(SceneDesc {
+        image: ImageDesc {
+            width: span(size.0),
+            height: span(size.1),
+            samples: span(1),
+        },
+        camera: span(camera),
+        world: WorldDesc {
+            background: Color(background),
+            ambient: Color(rgb(ambient_light)),
+        },
+        render,
+        materials: cx.materials,
+        lights,
+        objects,
+        media: Vec::new(),
+    })
+}
+
+/// POV-Ray's camera when a file has none.
+fn default_camera(file: &Loc) -> Camera {
+    Camera {
+        orthographic: false,
+        location: DVec3::ZERO,
+        direction: DVec3::Z,
+        right: DVec3::new(1.33, 0.0, 0.0),
+        up: DVec3::Y,
+        sky: DVec3::Y,
+        angle: None,
+        look_at: None,
+        sized: false,
+        transform: DAffine3::IDENTITY,
+        loc: file.clone(),
+    }
+}
+
+/// lucent's camera for POV-Ray's: `angle` sets the direction's length from the right
+/// vector's; `look_at` turns direction, right and up about `location` with `sky` up, keeping
+/// their lengths; the vertical field of view is `2·atan(|up| / 2|direction|)`.
+fn camera(c: &Camera, size: (u32, u32), warnings: &mut Vec<String>) -> Result<CameraDesc, LoadError> {
+    let (mut d, mut r, mut u) = (c.direction, c.right, c.up);
+    if d.length() == 0.0 || r.length() == 0.0 || u.length() == 0.0 {
+        return Err(c.loc.error("the camera's direction, right and up must not be zero"));
+    }
+    if let Some(a) = c.angle {
+        if !(0.0..180.0).contains(&a) || a == 0.0 {
+            return Err(c.loc.error(format!("the camera's angle must be in (0, 180) degrees, not {a}")));
+        }
+        d = d.normalize() * (0.5 * r.length() / (a.to_radians() / 2.0).tan());
+    }
+    if let Some(at) = c.look_at {
+        let dir = at - c.location;
+        if dir.length() == 0.0 {
+            return Err(c.loc.error("the camera looks at its own location"));
+        }
+        let dn = dir.normalize();
+        // Left-handed: right = sky × direction.
+        let right = c.sky.cross(dn);
+        if right.length() < 1e-12 {
+            return Err(c.loc.error("the camera looks along its sky vector: which way is up is undefined"));
+        }
+        let handed = if c.up.cross(c.direction).dot(c.right) < 0.0 { -1.0 } else { 1.0 };
+        let rn = right.normalize() * handed;
+        let un = dn.cross(rn).normalize() * handed;
+        d = dn * d.length();
+        r = rn * r.length();
+        u = un * u.length();
+    }
+    // An orthographic view given an angle, or no size, spans at the look-at point what the
+    // perspective view would.
+    if c.orthographic && (c.angle.is_some() || !c.sized) {
+        let at = c.look_at.unwrap_or(c.location + c.direction);
+        let k = (at - c.location).length() / d.length();
+        if k > 0.0 {
+            r *= k;
+            u *= k;
+        }
+    }
+    let m = c.transform;
+    let eye = m.transform_point3(c.location);
+    let (d, r, u) = (m.transform_vector3(d), m.transform_vector3(r), m.transform_vector3(u));
+    let aspect = r.length() / u.length();
+    let image_aspect = f64::from(size.0) / f64::from(size.1);
+    if (aspect / image_aspect - 1.0).abs() > 0.01 {
+        warnings.push(c.loc.warning(format!(
+            "the camera's right/up ratio {aspect:.3} differs from the image's {image_aspect:.3}: POV-Ray stretches the image, lucent keeps square pixels (set `right x*image_width/image_height`)"
+        )));
+    }
+    if r.cross(u).dot(d) > 0.0 {
+        // POV-Ray's usual handedness is right = up × direction reversed; the other one mirrors
+        // the image.
+    }
+    let fov = 2.0 * (u.length() / 2.0 / d.length()).atan();
+    Ok(CameraDesc {
+        eye: Point(point(eye)),
+        look_at: Point(point(eye + d)),
+        up: Vector(point(u).normalize().as_vec3()),
+        fov: Finite(fov.to_degrees() as f32),
+        aperture: None,
+        focus_distance: None,
+        orthographic: c.orthographic.then(|| Finite(u.length() as f32)),
+        motion: None,
+        shutter: None,
+        medium: None,
+    })
+}
+
+/// lucent's lights for one POV-Ray light (an area light is its grid of point lights).
+fn light(l: &Light, cx: &mut Convert) -> Vec<LightDesc> {
+    if l.shadowless {
+        cx.warn(&l.loc, "a shadowless light casts shadows in lucent");
+    }
+    if l.fade.is_some_and(|(d, p)| d > 0.0 && p > 0.0) {
+        cx.warn(&l.loc, "a light's fade_distance and fade_power are not read by lucent (no falloff)");
+    }
+    let color = Color(rgb(l.color));
+    let mut out = Vec::new();
+    match l.kind {
+        PovLight::Parallel => {
+            let mut d = LightDesc::new(LightKind::Directional);
+            let dir = point(l.point_at - l.position);
+            d.direction = Some(span(Vector(dir.normalize_or(DVec3::NEG_Y).as_vec3())));
+            d.intensity = Some(color);
+            out.push(d);
+            return out;
+        }
+        PovLight::Spot => {
+            if l.spot.2 != 0.0 {
+                cx.warn(&l.loc, "a spotlight's tightness is not read by lucent");
+            }
+        }
+        PovLight::Point => {}
+    }
+    let (n, m) = l.area.map_or((1, 1), |a| (a.2, a.3));
+    let (n, m) = if n * m > MAX_AREA_LIGHTS {
+        cx.warn(&l.loc, format!("an area light of {n}×{m} is sampled by {MAX_AREA_LIGHTS} point lights at most"));
+        let k = (f64::from(MAX_AREA_LIGHTS) / f64::from(n * m)).sqrt();
+        (((f64::from(n) * k) as u32).max(1), ((f64::from(m) * k) as u32).max(1))
+    } else {
+        (n, m)
+    };
+    let share = 1.0 / f64::from(n * m);
+    for i in 0..n {
+        for j in 0..m {
+            let mut p = l.position;
+            if let Some((a, b, _, _)) = l.area {
+                let s = if n > 1 { f64::from(i) / f64::from(n - 1) - 0.5 } else { 0.0 };
+                let t = if m > 1 { f64::from(j) / f64::from(m - 1) - 0.5 } else { 0.0 };
+                p += a * s + b * t;
+            }
+            let mut d = if l.kind == PovLight::Spot {
+                let mut d = LightDesc::new(LightKind::Spot);
+                let dir = point(l.point_at - l.position);
+                d.direction = Some(span(Vector(dir.normalize_or(DVec3::NEG_Y).as_vec3())));
+                let cutoff = l.spot.1.clamp(0.01, 90.0);
+                d.cutoff = Some(span(Finite(cutoff as f32)));
+                d.cutoff_start = Some(span(Finite(l.spot.0.clamp(0.0, cutoff) as f32)));
+                d
+            } else {
+                LightDesc::new(LightKind::Point)
+            };
+            d.position = Some(span(Point(point(p))));
+            d.intensity = Some(Color(rgb(l.color * share)));
+            d.falloff = Some(span(FalloffName::None));
+            out.push(d);
+        }
+    }
+    let _ = color;
+    out
+}
+
+impl Convert<'_> {
+    fn warn(&mut self, loc: &Loc, message: impl std::fmt::Display) {
+        let line = loc.warning(message);
+        if !self.warnings.contains(&line) {
+            self.warnings.push(line);
+        }
+    }
+
+    /// Lights inside combinations, placed.
+    fn collect_lights(&mut self, o: &Object, outer: &DAffine3, out: &mut Vec<Spanned<LightDesc>>) {
+        let m = *outer * o.transform;
+        match &o.shape {
+            Shape::Light(l) => {
+                let mut l = (**l).clone();
+                l.position = m.transform_point3(l.position);
+                l.point_at = m.transform_point3(l.point_at);
+                out.extend(light(&l, self).into_iter().map(span));
+            }
+            Shape::Csg(_, children) => {
+                for c in children {
+                    self.collect_lights(c, &m, out);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// The material's name for a texture and interior, made once per distinct set.
+    fn material(&mut self, o: &Object, inherited: Option<&Rc<Texture>>) -> String {
+        let tex = o.texture.as_ref().or(inherited);
+        let pigment = tex
+            .and_then(|t| t.pigment.clone())
+            .or_else(|| self.default_pigment.clone());
+        let finish = match tex {
+            Some(t) => self.default_finish.overlaid(&t.finish),
+            None => self.default_finish.clone(),
+        };
+        for (what, loc) in &finish.unread {
+            self.warn(loc, format!("{what} is not read by lucent"));
+        }
+        if let Some(loc) = tex.and_then(|t| t.layered.as_ref()) {
+            let loc = loc.clone();
+            self.warn(&loc, "layered textures: lucent draws the first layer only");
+        }
+        if let Some(loc) = tex.and_then(|t| t.normal.as_ref()) {
+            let loc = loc.clone();
+            self.warn(&loc, "a `normal` (bump pattern) is not read by lucent: the surface is smooth");
+        }
+        let ior = o.interior.as_ref().and_then(|i| i.ior).unwrap_or(1.0);
+        if let Some(i) = &o.interior {
+            for (what, loc) in &i.unread {
+                let (what, loc) = (what.clone(), loc.clone());
+                self.warn(&loc, format!("{what} is not read by lucent"));
+            }
+        }
+        let m = self.whitted(pigment.as_deref(), &finish, ior, &o.loc);
+        let key = format!("{:?}", (&m.ka, &m.kd, &m.ks, &m.shininess, &m.kr, &m.kt, &m.ior));
+        if let Some(name) = self.by_key.get(&key) {
+            return name.clone();
+        }
+        let name = format!("pov{}", self.materials.len() + 1);
+        let mut m = m;
+        m.name = span(name.clone());
+        self.materials.push(span(m));
+        self.by_key.insert(key, name.clone());
+        name
+    }
+
+    /// POV-Ray's lighting terms as Whitted's coefficients.
+    fn whitted(&mut self, pigment: Option<&Pigment>, f: &Finish, ior: f64, at: &Loc) -> MaterialDesc {
+        let black = Pigment::solid(Vect::splat(0.0, 5), at.clone());
+        let pigment = pigment.unwrap_or(&black);
+        let avg = pigment.average();
+        let opacity = |c: &Vect| (1.0 - c.c[3] - c.c[4]).clamp(0.0, 1.0);
+        let diffuse = f.diffuse.unwrap_or(0.6);
+        let ambient = f.ambient.unwrap_or(DVec3::splat(0.1));
+        let metallic = f.metallic.unwrap_or(0.0);
+        let lit = |c: &Vect| rgb(c.v3() * diffuse * opacity(c));
+        let kd = match self.texture_of(pigment, &lit) {
+            Some(t) => t,
+            None => TextureDesc::Solid(lit(&avg)),
+        };
+        let mut m = MaterialDesc::named("");
+        // Ambient light reflects as the pigment's colour (its average on patterns).
+        m.ka = Some(Color(rgb(ambient * avg.v3() * opacity(&avg))));
+        if f.emission.is_some_and(|e| e != DVec3::ZERO) {
+            // `emission` adds like ambient light of 1.
+            let e = f.emission.unwrap_or_default() * avg.v3();
+            let ia = self.ambient_light.max(DVec3::splat(1e-6));
+            m.ka = Some(Color(rgb(ambient * avg.v3() * opacity(&avg) + e / ia)));
+        }
+        m.kd = Some(kd);
+        if f.brilliance.is_some_and(|b| (b - 1.0).abs() > 1e-9) {
+            self.warn(at, "`brilliance` is not read by lucent (N·L to the power 1)");
+        }
+        let tint = |k: f64| {
+            let c = avg.v3();
+            DVec3::splat(k) * (DVec3::ONE - metallic) + c * k * metallic
+        };
+        let phong = f.phong.unwrap_or(0.0);
+        let specular = f.specular.unwrap_or(0.0);
+        if phong > 0.0 {
+            m.ks = Some(Color(rgb(tint(phong))));
+            m.shininess = Some(span(Finite(f.phong_size.unwrap_or(40.0) as f32)));
+            if specular > 0.0 {
+                self.warn(at, "`specular` beside `phong`: lucent draws the phong highlight only");
+            }
+        } else if specular > 0.0 {
+            // Blinn's (N·H)^(1/roughness) is close to Phong's (R·V)^(1/(4·roughness)).
+            let roughness = f.roughness.unwrap_or(0.05).max(1e-4);
+            m.ks = Some(Color(rgb(tint(specular))));
+            m.shininess = Some(span(Finite((0.25 / roughness) as f32)));
+        }
+        if let Some(r) = f.reflection {
+            let c = avg.v3();
+            let kr = r * (DVec3::ONE - metallic) + r * c * metallic;
+            if kr != DVec3::ZERO {
+                m.kr = Some(Color(rgb(kr)));
+            }
+        }
+        let kt = avg.v3() * avg.c[3] + DVec3::splat(avg.c[4]);
+        if kt != DVec3::ZERO {
+            m.kt = Some(Color(rgb(kt)));
+        }
+        if f.conserve_energy == Some(true) {
+            self.warn(at, "`conserve_energy` is not read by lucent");
+        }
+        m.ior = Some(span(Finite(ior as f32)));
+        m
+    }
+
+    /// A lucent texture for a pigment's pattern, where one matches: checkers of two colours
+    /// scaled evenly. `None`: the average colour stands in (with a warning).
+    fn texture_of(&mut self, p: &Pigment, lit: &dyn Fn(&Vect) -> Rgb) -> Option<TextureDesc> {
+        match &p.pattern {
+            Pattern::Solid(_) => None,
+            Pattern::Checker(pair) => {
+                let solid = |q: &Pigment| match q.pattern {
+                    Pattern::Solid(c) => Some(c),
+                    _ => None,
+                };
+                let (Some(a), Some(b)) = (solid(&pair[0]), solid(&pair[1])) else {
+                    self.warn(&p.loc, "a checker of patterns is shown by its average colour");
+                    return None;
+                };
+                // lucent's world back to POV-Ray's (the mirror), then into the pattern's space.
+                let to_pattern = p.transform.inverse() * DAffine3::from_scale(FLIP);
+                Some(TextureDesc::Checker(Checker {
+                    even: lit(&a),
+                    odd: lit(&b),
+                    size: 1.0,
+                    world: Some(glam::Affine3A::from_mat4(DMat4::from(to_pattern).as_mat4())),
+                }))
+            }
+            Pattern::Hexagon(_) => {
+                self.warn(&p.loc, "the `hexagon` pattern is shown by its average colour");
+                None
+            }
+            Pattern::Mapped(name, ..) => {
+                self.warn(&p.loc, format!("the `{name}` pattern is shown by its colour map's average colour"));
+                None
+            }
+        }
+    }
+
+    /// The description of an object (several for a mesh: one per triangle), `None` when
+    /// nothing of it is drawn.
+    fn object(
+        &mut self,
+        o: &Object,
+        inherited: Option<&Rc<Texture>>,
+        outer: &DAffine3,
+        top: bool,
+    ) -> Result<Option<Vec<ObjectDesc>>, LoadError> {
+        let m = *outer * o.transform;
+        let tex = o.texture.as_ref().or(inherited);
+        let material = || String::new();
+        let mut d = match &o.shape {
+            Shape::Light(_) => return Ok(None),
+            Shape::Unread(name) => {
+                if &**name != "material" {
+                    self.warn(&o.loc, format!("the shape `{name}` is not read by lucent and is left out"));
+                }
+                return Ok(None);
+            }
+            Shape::Sphere(c, r) => {
+                let mut d = ObjectDesc::new(ObjectKind::Ellipsoid, &material());
+                d.center = Some(span(Point(*c)));
+                d.radii = Some(span(Vector(Vec3::splat(*r as f32))));
+                d
+            }
+            Shape::Plane(n, dist) => {
+                let mut d = ObjectDesc::new(ObjectKind::Plane, &material());
+                let nn = n.normalize();
+                let p = m.transform_point3(nn * *dist);
+                let normal = m.matrix3.inverse().transpose() * nn;
+                d.point = Some(span(Point(point(p))));
+                d.normal = Some(span(Vector(point(normal).normalize().as_vec3())));
+                if !top {
+                    self.warn(&o.loc, "a plane inside a combination is not read by lucent and is left out");
+                    return Ok(None);
+                }
+                d.material = span(self.material(o, inherited));
+                return Ok(Some(vec![d]));
+            }
+            Shape::Box(a, b) => {
+                let mut d = ObjectDesc::new(ObjectKind::Box, &material());
+                // A flat box (POV-Ray draws it as its face) gets a sliver of thickness.
+                let (lo, mut hi) = (a.min(*b), a.max(*b));
+                let sliver = 1e-6 * (hi - lo).max_element().max(1e-3);
+                hi = DVec3::select(hi.cmpgt(lo), hi, lo + sliver);
+                d.min = Some(span(Point(lo)));
+                d.max = Some(span(Point(hi)));
+                d
+            }
+            Shape::Cylinder(a, b, r, open) => {
+                let mut d = ObjectDesc::new(ObjectKind::Cylinder, &material());
+                d.base = Some(span(Point(*a)));
+                d.cap = Some(span(Point(*b)));
+                d.radius = Some(span(Finite(*r as f32)));
+                d.open = Some(*open);
+                d
+            }
+            Shape::Cone(a, ra, b, rb, open) => {
+                let mut d = ObjectDesc::new(ObjectKind::Cone, &material());
+                d.base = Some(span(Point(*a)));
+                d.cap = Some(span(Point(*b)));
+                d.base_radius = Some(span(Finite(*ra as f32)));
+                d.cap_radius = Some(span(Finite(*rb as f32)));
+                d.open = Some(*open);
+                d
+            }
+            Shape::Torus(major, minor) => {
+                let mut d = ObjectDesc::new(ObjectKind::Torus, &material());
+                d.major = Some(span(Finite(*major as f32)));
+                d.minor = Some(span(Finite(*minor as f32)));
+                d
+            }
+            Shape::Disc(c, n, r, hole) => {
+                let mut d = ObjectDesc::new(ObjectKind::Disc, &material());
+                d.center = Some(span(Point(*c)));
+                d.normal = Some(span(Vector(n.as_vec3())));
+                d.radius = Some(span(Finite(*r as f32)));
+                d.hole = Some(span(Finite(*hole as f32)));
+                d
+            }
+            Shape::Superellipsoid(e, n) => {
+                let mut d = ObjectDesc::new(ObjectKind::Superellipsoid, &material());
+                d.exponents = Some(span([Finite(*e as f32), Finite(*n as f32)]));
+                d
+            }
+            Shape::Mesh(mesh) => {
+                if !top {
+                    self.warn(&o.loc, "triangles inside a combination are not read by lucent and are left out");
+                    return Ok(None);
+                }
+                if mesh.normals.is_some() {
+                    self.warn(&o.loc, "smooth triangles are drawn flat by lucent's POV-Ray reader");
+                }
+                let name = self.material(o, inherited);
+                let mut out = Vec::new();
+                for (k, tri) in mesh.points.chunks_exact(3).enumerate() {
+                    let v = [tri[0], tri[1], tri[2]].map(|p| point(m.transform_point3(p)));
+                    if (v[1] - v[0]).cross(v[2] - v[0]).length() <= 1e-12 * (v[1] - v[0]).length_squared().max(1e-300) {
+                        continue;
+                    }
+                    let mut d = ObjectDesc::new(ObjectKind::Triangle, &name);
+                    if let Some(Some(t)) = mesh.textures.as_ref().and_then(|ts| ts.get(k)) {
+                        let mut own = o.clone();
+                        own.texture = Some(t.clone());
+                        d.material = span(self.material(&own, None));
+                    }
+                    d.vertices = Some(span(v.map(Point)));
+                    out.push(d);
+                }
+                return Ok(Some(out));
+            }
+            Shape::Csg(kind, children) => {
+                let mut d = ObjectDesc::new(
+                    match kind {
+                        CsgKind::Union => ObjectKind::Union,
+                        CsgKind::Intersection => ObjectKind::Intersection,
+                        CsgKind::Difference => ObjectKind::Difference,
+                        CsgKind::Merge => ObjectKind::Merge,
+                    },
+                    &material(),
+                );
+                if *kind == CsgKind::Union && top {
+                    // A union's parts are drawn as separate objects: every kind of shape may
+                    // be one, and a union keeps all surfaces anyway.
+                    let mut out = Vec::new();
+                    for c in children {
+                        if let Some(mut parts) = self.object(c, tex, &m, true)? {
+                            if o.inverse {
+                                self.warn(&o.loc, "an inverted union is drawn as its parts");
+                            }
+                            out.append(&mut parts);
+                        }
+                    }
+                    return Ok(Some(out));
+                }
+                let mut kids = Vec::new();
+                for c in children {
+                    if let Some(parts) = self.object(c, tex, &DAffine3::IDENTITY, false)? {
+                        kids.extend(parts.into_iter().map(span));
+                    }
+                }
+                if kids.is_empty() {
+                    return Ok(None);
+                }
+                if kids.len() == 1 && *kind != CsgKind::Intersection {
+                    let mut only = kids.pop().map(Spanned::into_inner).expect("one child");
+                    // One part: itself, placed by the combination.
+                    let inner = only.transform.map(|t| t.into_inner().0).unwrap_or(DMat4::IDENTITY);
+                    let outer = if top { affine(&m) } else { affine(&o.transform) };
+                    only.transform = Some(span(Matrix(DMat4::from(outer) * inner)));
+                    if top {
+                        fill_material(&mut only, &self.material(o, inherited));
+                    }
+                    return Ok(Some(vec![only]));
+                }
+                d.children = Some(span(kids));
+                d
+            }
+        };
+        let placement = if top { m } else { o.transform };
+        d.transform = Some(span(Matrix(DMat4::from(affine(&placement)))));
+        if o.inverse {
+            d.inverse = Some(true);
+        }
+        // Points given in POV-Ray's space: mirrored by the transform's flip (the placement
+        // conjugated by the mirror takes them from POV-Ray's object space to lucent's world,
+        // so shape data is given in mirrored object space).
+        mirror_shape(&mut d);
+        if top || o.texture.is_some() {
+            d.material = span(self.material(o, inherited));
+        }
+        if o.no_shadow {
+            self.warn(&o.loc, "`no_shadow` is not read by lucent: the object casts shadows");
+        }
+        Ok(Some(vec![d]))
+    }
+}
+
+/// Gives `d` and its children without a material the name `m`.
+fn fill_material(d: &mut ObjectDesc, m: &str) {
+    if d.material.get_ref().is_empty() {
+        d.material = span(m.to_string());
+    }
+}
+
+/// The shape's own points and directions moved into the mirrored object space.
+fn mirror_shape(d: &mut ObjectDesc) {
+    for p in [&mut d.center, &mut d.base, &mut d.cap].into_iter().flatten() {
+        *p = span(Point(point(p.get_ref().0)));
+    }
+    if let (Some(a), Some(b)) = (&d.min, &d.max) {
+        let (a, b) = (point(a.get_ref().0), point(b.get_ref().0));
+        d.min = Some(span(Point(a.min(b))));
+        d.max = Some(span(Point(a.max(b))));
+    }
+    if d.kind == ObjectKind::Disc
+        && let Some(n) = &d.normal
+    {
+        d.normal = Some(span(Vector(point(n.get_ref().0.as_dvec3()).as_vec3())));
+    }
+}
+
+#[allow(dead_code)]
+fn unused(_: DMat3) {}
