@@ -5,6 +5,7 @@
 //! carry the samples per pixel reached in their metadata (`lucent.samples`: `N`, or `MIN..MAX`
 //! when a stopped render left pixels at different counts).
 
+use lucent::film::Display;
 use anyhow::{Context, anyhow, bail};
 use lucent::film::Film;
 use std::fs::File;
@@ -181,15 +182,38 @@ pub fn write_density_map(
     })
 }
 
-/// Writes `film` to `path` as `format`, atomically.
+/// Writes `film` to `path` as `format`, atomically, its values shown as lucent's linear
+/// light.
 pub fn write_image(film: &Film, path: &Path, format: ImageFormat) -> anyhow::Result<()> {
-    write_atomically(path, |out| encode_image(film, format, out))
+    write_image_as(film, path, format, Display::Srgb)
+}
+
+/// [`write_image`] of a film whose values are shown as `display` says (a POV-Ray scene's
+/// gamma).
+pub fn write_image_as(
+    film: &Film,
+    path: &Path,
+    format: ImageFormat,
+    display: Display,
+) -> anyhow::Result<()> {
+    write_atomically(path, |out| encode_image_as(film, format, display, out))
 }
 
 /// The file `write_image` writes, into `out` (the Python package's inline PNGs are these bytes).
 pub fn encode_image(
     film: &Film,
     format: ImageFormat,
+    out: &mut (impl Write + std::io::Seek),
+) -> anyhow::Result<()> {
+    encode_image_as(film, format, Display::Srgb, out)
+}
+
+/// [`encode_image`] with the film's values shown as `display` says: the PNG's bytes encoded
+/// so, the EXR's values turned into linear light.
+pub fn encode_image_as(
+    film: &Film,
+    format: ImageFormat,
+    display: Display,
     out: &mut (impl Write + std::io::Seek),
 ) -> anyhow::Result<()> {
     let (w, h) = (film.width(), film.height());
@@ -204,13 +228,17 @@ pub fn encode_image(
             encoder.set_compression(png::Compression::Fast);
             encoder.add_text_chunk("lucent.samples".into(), samples.clone())?;
             let mut writer = encoder.write_header()?;
-            writer.write_image_data(&film.to_srgb8())?;
+            writer.write_image_data(&film.to_8bit(display))?;
             writer.finish()?;
             Ok(())
         }
         ImageFormat::Exr => {
             use exr::prelude::*;
-            let pixels = film.to_linear_rgb();
+            let pixels: Vec<[f32; 3]> = film
+                .to_linear_rgb()
+                .into_iter()
+                .map(|p| p.map(|v| display.linear(v)))
+                .collect();
             let channel = |name: &str, c: usize| {
                 AnyChannel::new(
                     name,

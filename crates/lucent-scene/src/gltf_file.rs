@@ -364,6 +364,7 @@ pub fn import_gltf(
         desc,
         camera_given,
         warnings,
+        lit_as_given: false,
     })
 }
 

@@ -20,6 +20,9 @@ pub struct Imported {
     pub camera_given: bool,
     /// What was read but cannot be rendered as written (one line each, naming the file).
     pub warnings: Vec<String>,
+    /// The file's lights are all it has, none meaning darkness (POV-Ray's ambient-only
+    /// scenes): no default light is added.
+    pub lit_as_given: bool,
 }
 
 /// A placeholder camera, for files without one.

@@ -208,7 +208,7 @@ impl SceneFile {
             .iter()
             .any(|m| m.get_ref().emission.is_some());
         let mut default_light = None;
-        if desc.lights.is_empty() && !emits {
+        if desc.lights.is_empty() && !emits && !imported.lit_as_given {
             import::add_default_light(desc);
             default_light = Some(desc.lights.len() - 1);
         }

@@ -35,6 +35,7 @@ pub fn import_ply(path: &Path) -> Imported {
         desc,
         camera_given: false,
         warnings: vec![],
+        lit_as_given: false,
     }
 }
 
@@ -128,5 +129,6 @@ pub fn import_obj(
         desc,
         camera_given: false,
         warnings,
+        lit_as_given: false,
     })
 }

@@ -25,7 +25,7 @@ const COMMON: &[&str] = &[
 fn takes(kind: MaterialKind) -> &'static [&'static str] {
     const ROUGH: [&str; 4] = ["roughness", "roughness_u", "roughness_v", "distribution"];
     match kind {
-        MaterialKind::Whitted => &["ka", "kd", "ks", "shininess", "kr", "kt", "ior"],
+        MaterialKind::Whitted => &["ka", "ka_map", "kd", "ks", "shininess", "kr", "kt", "ior"],
         MaterialKind::Diffuse => &["reflectance"],
         MaterialKind::Null => &[],
         MaterialKind::Conductor => &["specular", "eta", "k", "metal"],
@@ -117,6 +117,7 @@ pub(super) fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(),
     let at = |present: bool| present.then(|| table.clone());
     let keys = [
         ("ka", at(d.ka.is_some())),
+        ("ka_map", at(d.ka_map.is_some())),
         ("kd", at(d.kd.is_some())),
         ("ks", at(d.ks.is_some())),
         ("shininess", span(&d.shininess)),

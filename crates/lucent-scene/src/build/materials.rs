@@ -239,8 +239,13 @@ fn classic(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Material, Loa
         Some(t) => ctx.texture(t, m.span(), Slot::Color)?,
         None => Texture::Solid(Rgb::BLACK),
     };
+    let ka_map = match &d.ka_map {
+        Some(t) => Some(ctx.texture(t, m.span(), Slot::Color)?),
+        None => None,
+    };
     Ok(Material {
         ka: c(d.ka),
+        ka_map,
         kd,
         ks: c(d.ks),
         shininess: d.shininess.as_ref().map_or(0.0, |s| s.get_ref().0),

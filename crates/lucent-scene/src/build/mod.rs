@@ -15,6 +15,7 @@ pub mod shapes;
 mod solids;
 pub mod textures;
 
+use lucent::film::Display;
 use crate::desc::settings::{
     FilterName, FilterSamplingName, RenderDesc, SamplingName, TriangleTestName,
 };
@@ -77,6 +78,8 @@ pub struct Loaded {
     pub inputs: u64,
     /// What is rendered other than as written (one line each, naming the file).
     pub warnings: Vec<String>,
+    /// How the image's values are written as pixels (`[image] gamma`, `raw`).
+    pub display: Display,
 }
 
 /// What building needs besides the description: where files are, what was read, and the
@@ -430,12 +433,29 @@ pub fn build_with_files(
             Shutter::new(open, close).map_err(|e| source.error(shutter.span(), e.to_string()))?;
         scene = scene.with_shutter(s);
     }
+    let display = display(&desc.image, source)?;
     Ok(Loaded {
         scene,
         settings,
         inputs: inputs.value(),
         warnings,
+        display,
     })
+}
+
+/// How the image's values are written: `[image] raw` and `gamma`.
+fn display(image: &crate::desc::ImageDesc, source: &Source) -> Result<Display, LoadError> {
+    if image.raw == Some(true) {
+        return Ok(Display::Raw);
+    }
+    match &image.gamma {
+        None => Ok(Display::Srgb),
+        Some(g) => {
+            let v = g.get_ref().0;
+            check(source, g.span(), v > 0.0 && v <= 10.0, "the image's gamma must be in (0, 10]")?;
+            Ok(if v == 1.0 { Display::Srgb } else { Display::Gamma(v) })
+        }
+    }
 }
 
 /// The spacing of the points a scene may be rebased to: a power of two, so that every scene

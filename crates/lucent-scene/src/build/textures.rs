@@ -28,6 +28,7 @@ impl Context<'_> {
         Ok(match d {
             TextureDesc::Solid(c) => Texture::Solid(*c),
             TextureDesc::Checker(c) => Texture::Checker(*c),
+            TextureDesc::Pattern(p) => Texture::Pattern(p.clone()),
             TextureDesc::Checkerboard {
                 even,
                 odd,

@@ -100,6 +100,9 @@ pub struct MaterialDesc {
     /// Ambient coefficient.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ka: Option<super::Color>,
+    /// A texture multiplying `ka` (POV-Ray's ambient follows the pigment).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ka_map: Option<TextureDesc>,
     /// Diffuse coefficient: a colour or a texture.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kd: Option<TextureDesc>,
@@ -291,6 +294,7 @@ impl MaterialDesc {
             name: Spanned::new(0..0, name.to_string()),
             kind: None,
             ka: None,
+            ka_map: None,
             kd: None,
             ks: None,
             shininess: None,

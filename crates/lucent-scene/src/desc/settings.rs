@@ -14,6 +14,14 @@ pub struct ImageDesc {
     pub height: Spanned<u32>,
     /// Samples per pixel (default 1: through the pixel's centre; more: stratified jitter).
     pub samples: Spanned<u32>,
+    /// The gamma of the colours' space: `v^gamma` is linear light (POV-Ray's
+    /// `assumed_gamma`; default 1, linear).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gamma: Option<Spanned<Finite>>,
+    /// The pixels written as the values are, without gamma correction (POV-Ray's scenes
+    /// before 3.7 without `assumed_gamma`; default false).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub raw: Option<bool>,
 }
 
 impl Default for ImageDesc {
@@ -22,6 +30,8 @@ impl Default for ImageDesc {
             width: Spanned::new(0..0, 800),
             height: Spanned::new(0..0, 600),
             samples: Spanned::new(0..0, 1),
+            gamma: None,
+            raw: None,
         }
     }
 }

@@ -112,6 +112,8 @@ pub enum TextureDesc {
     Solid(Rgb),
     /// A 3D checkerboard.
     Checker(Checker),
+    /// A solid pattern of POV-Ray's (read from `.pov` files; it has no TOML form yet).
+    Pattern(Box<lucent::texture::Pattern>),
     /// A checkerboard over texture coordinates (period 1 after the placement).
     Checkerboard {
         /// Where `u` and `v` fall in the same half of the unit.
@@ -533,6 +535,10 @@ impl Serialize for TextureDesc {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         match self {
             TextureDesc::Solid(c) => Color(*c).serialize(s),
+            TextureDesc::Pattern(p) => Err(serde::ser::Error::custom(format!(
+                "a POV-Ray `{:?}` pattern has no TOML form yet",
+                p.kind
+            ))),
             TextureDesc::Checker(c) => {
                 let mut m = s.serialize_map(Some(1))?;
                 m.serialize_entry(

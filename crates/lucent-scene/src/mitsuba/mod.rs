@@ -140,6 +140,8 @@ fn convert_scene(
             width: Spanned::new(0..0, width),
             height: Spanned::new(0..0, height),
             samples: Spanned::new(0..0, sensor::DEFAULT_SAMPLES),
+            gamma: None,
+            raw: None,
         },
         camera: placeholder_camera(),
         world: WorldDesc::default(),
@@ -252,6 +254,7 @@ fn convert_scene(
         desc,
         camera_given: first_sensor.is_some(),
         warnings: cx.warnings,
+        lit_as_given: false,
     })
 }
 

@@ -15,7 +15,7 @@ use crate::desc::{
 use crate::error::LoadError;
 use glam::{DAffine3, DMat3, DMat4, DVec3, Vec3};
 use lucent::Rgb;
-use lucent::texture::Checker;
+use lucent::texture::{Checker, PatternKind, Turbulence, Wave};
 use std::collections::HashMap;
 use std::rc::Rc;
 use toml::Spanned;
@@ -56,6 +56,7 @@ struct Convert<'a> {
 /// The description of `scene` at `size` pixels.
 pub fn convert(
     scene: &PovScene,
+    version: Option<f64>,
     defaults: &super::scene::Defaults,
     size: (u32, u32),
     warnings: &mut Vec<String>,
@@ -70,11 +71,6 @@ pub fn convert(
         default_pigment: defaults.pigment.clone(),
         ambient_light,
     };
-    if let Some(g) = scene.assumed_gamma
-        && (g - 1.0).abs() > 1e-6
-    {
-        cx.warn(file, format!("assumed_gamma {g}: lucent lights in linear colour (assumed_gamma 1), so the image differs from POV-Ray's"));
-    }
     let camera = match &scene.camera {
         Some(c) => camera(c, size, cx.warnings)?,
         None => camera(&default_camera(file), size, cx.warnings)?,
@@ -110,6 +106,8 @@ pub fn convert(
             width: span(size.0),
             height: span(size.1),
             samples: span(1),
+            gamma: display_gamma(scene, version).map(|g| span(Finite(g as f32))),
+            raw: display_gamma(scene, version).is_none().then_some(true),
         },
         camera: span(camera),
         world: WorldDesc {
@@ -122,6 +120,17 @@ pub fn convert(
         objects,
         media: Vec::new(),
     })
+}
+
+/// The gamma of the scene's colour space, as POV-Ray 3.7 decides it: `assumed_gamma` where
+/// given; 1 for a scene of `#version 3.7` or later; `None` (no gamma correction: values
+/// written as they are) for older scenes and scenes without `#version`.
+fn display_gamma(scene: &PovScene, version: Option<f64>) -> Option<f64> {
+    match (scene.assumed_gamma, version) {
+        (Some(g), _) => Some(g),
+        (None, Some(v)) if v >= 3.7 - 1e-9 => Some(1.0),
+        _ => None,
+    }
 }
 
 /// POV-Ray's camera when a file has none.
@@ -332,7 +341,7 @@ impl Convert<'_> {
             }
         }
         let m = self.whitted(pigment.as_deref(), &finish, ior, &o.loc);
-        let key = format!("{:?}", (&m.ka, &m.kd, &m.ks, &m.shininess, &m.kr, &m.kt, &m.ior));
+        let key = format!("{:?}", (&m.ka, &m.ka_map, &m.kd, &m.ks, &m.shininess, &m.kr, &m.kt, &m.ior));
         if let Some(name) = self.by_key.get(&key) {
             return name.clone();
         }
@@ -359,13 +368,20 @@ impl Convert<'_> {
             None => TextureDesc::Solid(lit(&avg)),
         };
         let mut m = MaterialDesc::named("");
-        // Ambient light reflects as the pigment's colour (its average on patterns).
-        m.ka = Some(Color(rgb(ambient * avg.v3() * opacity(&avg))));
-        if f.emission.is_some_and(|e| e != DVec3::ZERO) {
-            // `emission` adds like ambient light of 1.
-            let e = f.emission.unwrap_or_default() * avg.v3();
+        // Ambient light reflects as the pigment's colour: `ka` is the finish's ambient, and
+        // `ka_map` the pattern's colours (their opacity applied).
+        let seen = |c: &Vect| rgb(c.v3() * opacity(c));
+        m.ka_map = self.texture_of_quiet(pigment, &seen);
+        m.ka = Some(Color(match m.ka_map {
+            Some(_) => rgb(ambient),
+            None => rgb(ambient * avg.v3() * opacity(&avg)),
+        }));
+        if let Some(e) = f.emission.filter(|e| *e != DVec3::ZERO) {
+            // `emission` adds like ambient light of 1: folded into `ka` over `Ia`.
             let ia = self.ambient_light.max(DVec3::splat(1e-6));
-            m.ka = Some(Color(rgb(ambient * avg.v3() * opacity(&avg) + e / ia)));
+            let ka = m.ka.map_or(DVec3::ZERO, |c| DVec3::new(c.0.r.into(), c.0.g.into(), c.0.b.into()));
+            let extra = if m.ka_map.is_some() { e / ia } else { e * avg.v3() * opacity(&avg) / ia };
+            m.ka = Some(Color(rgb(ka + extra)));
         }
         m.kd = Some(kd);
         if f.brilliance.is_some_and(|b| (b - 1.0).abs() > 1e-9) {
@@ -407,38 +423,103 @@ impl Convert<'_> {
         m
     }
 
-    /// A lucent texture for a pigment's pattern, where one matches: checkers of two colours
-    /// scaled evenly. `None`: the average colour stands in (with a warning).
+    /// A lucent texture for a pigment's pattern, each colour passed through `lit`; `None` for
+    /// one colour, or where the pattern is not read (its average stands in, with a warning).
     fn texture_of(&mut self, p: &Pigment, lit: &dyn Fn(&Vect) -> Rgb) -> Option<TextureDesc> {
-        match &p.pattern {
-            Pattern::Solid(_) => None,
+        // lucent's world back to POV-Ray's (the mirror), then into the pattern's space.
+        let to_pattern = p.transform.inverse() * DAffine3::from_scale(FLIP);
+        let to_pattern = glam::Affine3A::from_mat4(DMat4::from(to_pattern).as_mat4());
+        let solid = |q: &Pigment| match q.pattern {
+            Pattern::Solid(c) => Some(c),
+            _ => None,
+        };
+        let (kind, map, default_wave) = match &p.pattern {
+            Pattern::Solid(_) => return None,
             Pattern::Checker(pair) => {
-                let solid = |q: &Pigment| match q.pattern {
-                    Pattern::Solid(c) => Some(c),
-                    _ => None,
-                };
                 let (Some(a), Some(b)) = (solid(&pair[0]), solid(&pair[1])) else {
                     self.warn(&p.loc, "a checker of patterns is shown by its average colour");
                     return None;
                 };
-                // lucent's world back to POV-Ray's (the mirror), then into the pattern's space.
-                let to_pattern = p.transform.inverse() * DAffine3::from_scale(FLIP);
-                Some(TextureDesc::Checker(Checker {
+                return Some(TextureDesc::Checker(Checker {
                     even: lit(&a),
                     odd: lit(&b),
                     size: 1.0,
-                    world: Some(glam::Affine3A::from_mat4(DMat4::from(to_pattern).as_mat4())),
-                }))
+                    world: Some(to_pattern),
+                }));
             }
-            Pattern::Hexagon(_) => {
-                self.warn(&p.loc, "the `hexagon` pattern is shown by its average colour");
-                None
+            Pattern::Hexagon(three) => {
+                let cs: Vec<Option<Vect>> = three.iter().map(solid).collect();
+                if cs.iter().any(Option::is_none) {
+                    self.warn(&p.loc, "a hexagon of patterns is shown by its average colour");
+                    return None;
+                }
+                let map = cs.iter().flatten().enumerate().map(|(i, c)| (i as f32, lit(c))).collect();
+                (PatternKind::Hexagon, map, Wave::Ramp)
             }
-            Pattern::Mapped(name, ..) => {
-                self.warn(&p.loc, format!("the `{name}` pattern is shown by its colour map's average colour"));
-                None
+            Pattern::Mapped(name, axis, map) => {
+                let (kind, wave) = match &**name {
+                    "gradient" => (PatternKind::Gradient(axis.as_vec3()), Wave::Ramp),
+                    "marble" => (PatternKind::Marble, Wave::Triangle),
+                    "wood" => (PatternKind::Wood, Wave::Triangle),
+                    "onion" => (PatternKind::Onion, Wave::Ramp),
+                    "leopard" => (PatternKind::Leopard, Wave::Ramp),
+                    "radial" => (PatternKind::Radial, Wave::Ramp),
+                    "spherical" => (PatternKind::Spherical, Wave::Ramp),
+                    "cylindrical" => (PatternKind::Cylindrical, Wave::Ramp),
+                    "planar" => (PatternKind::Planar, Wave::Ramp),
+                    "boxed" => (PatternKind::Boxed, Wave::Ramp),
+                    "bozo" | "spotted" | "bumps" | "dents" => (PatternKind::Noise, Wave::Ramp),
+                    "granite" => (PatternKind::Granite, Wave::Ramp),
+                    "agate" => (PatternKind::Agate, Wave::Ramp),
+                    "ripples" | "waves" => (PatternKind::Ripples, Wave::Ramp),
+                    "wrinkles" => (PatternKind::Wrinkles, Wave::Ramp),
+                    other => {
+                        self.warn(&p.loc, format!("the `{other}` pattern is shown by its colour map's average colour"));
+                        return None;
+                    }
+                };
+                if matches!(kind, PatternKind::Noise | PatternKind::Granite | PatternKind::Agate | PatternKind::Wrinkles)
+                    || p.shaping.turbulence.is_some()
+                {
+                    self.warn(&p.loc, format!("the `{name}` pattern's noise is lucent's own: its grain differs from POV-Ray's"));
+                }
+                let map: Vec<(f32, Rgb)> = map.iter().map(|(v, c)| (*v as f32, lit(c))).collect();
+                (kind, map, wave)
             }
-        }
+        };
+        let sh = &p.shaping;
+        let wave = match sh.wave.as_ref().map(|(w, e)| (&**w, *e)) {
+            None => default_wave,
+            Some(("ramp_wave", _)) => Wave::Ramp,
+            Some(("triangle_wave", _)) => Wave::Triangle,
+            Some(("sine_wave", _)) => Wave::Sine,
+            Some(("scallop_wave", _)) => Wave::Scallop,
+            Some(("cubic_wave", _)) => Wave::Cubic,
+            Some((_, e)) => Wave::Poly(e as f32),
+        };
+        let turbulence = sh.turbulence.map(|amount| Turbulence {
+            amount: amount.as_vec3(),
+            octaves: sh.octaves.unwrap_or(6.0).clamp(1.0, 10.0) as u32,
+            omega: sh.omega.unwrap_or(0.5) as f32,
+            lambda: sh.lambda.unwrap_or(2.0) as f32,
+        });
+        Some(TextureDesc::Pattern(Box::new(lucent::texture::Pattern {
+            kind,
+            to_pattern,
+            wave,
+            frequency: sh.frequency.unwrap_or(1.0) as f32,
+            phase: sh.phase.unwrap_or(0.0) as f32,
+            turbulence,
+            map,
+        })))
+    }
+
+    /// [`Convert::texture_of`] without its warnings (given once, for the diffuse colour).
+    fn texture_of_quiet(&mut self, p: &Pigment, lit: &dyn Fn(&Vect) -> Rgb) -> Option<TextureDesc> {
+        let n = self.warnings.len();
+        let t = self.texture_of(p, lit);
+        self.warnings.truncate(n);
+        t
     }
 
     /// The description of an object (several for a mesh: one per triangle), `None` when

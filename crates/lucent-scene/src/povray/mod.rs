@@ -86,11 +86,12 @@ pub fn import_povray(
         column: 1,
     };
     let mut warnings = std::mem::take(&mut p.warnings);
-    let desc = convert::convert(&scene, &p.defaults, size, &mut warnings, &file)?;
+    let desc = convert::convert(&scene, p.main_version, &p.defaults, size, &mut warnings, &file)?;
     Ok(Imported {
         desc,
         camera_given: true,
         warnings,
+        lit_as_given: true,
     })
 }
 
@@ -111,10 +112,11 @@ pub fn import_povray_text(
         column: 1,
     };
     let mut warnings = std::mem::take(&mut p.warnings);
-    let desc = convert::convert(&scene, &p.defaults, size, &mut warnings, &file)?;
+    let desc = convert::convert(&scene, p.main_version, &p.defaults, size, &mut warnings, &file)?;
     Ok(Imported {
         desc,
         camera_given: true,
         warnings,
+        lit_as_given: true,
     })
 }

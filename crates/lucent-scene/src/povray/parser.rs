@@ -56,6 +56,8 @@ pub struct Parser {
     pub warnings: Vec<String>,
     /// `#version`'s value (3.7 unless the file says otherwise).
     pub version: f64,
+    /// The first `#version` of the scene's own file (not its includes'), if any.
+    pub main_version: Option<f64>,
     /// `#default`'s textures and finishes.
     pub defaults: Defaults,
     /// The image's size, for `image_width` and `image_height`.
@@ -108,6 +110,7 @@ impl Parser {
             inputs: Fingerprint::default(),
             warnings: Vec::new(),
             version: 3.7,
+            main_version: None,
             defaults: Defaults::default(),
             image_size: (320, 240),
             streams: Vec::new(),
@@ -321,6 +324,48 @@ impl Parser {
         }
     }
 
+    /// The value the next token names, consumed, when it is an identifier whose value (an
+    /// array's element, its indices read) `accept` takes; nothing is read otherwise (an array
+    /// is read whole, and its element refused with an error).
+    pub fn take_named(
+        &mut self,
+        what: &str,
+        accept: impl Fn(&Value) -> bool,
+    ) -> Result<Option<Value>, LoadError> {
+        let Some(Token {
+            tok: Tok::Word(w),
+            loc,
+        }) = self.peek()?.cloned()
+        else {
+            return Ok(None);
+        };
+        let value = match self.lookup(&w).cloned() {
+            Some(Value::Array(a)) => {
+                self.next()?;
+                let mut index = Vec::new();
+                while self.eat_symbol("[")? {
+                    index.push(self.float()?);
+                    self.expect_symbol("]")?;
+                }
+                let a = a.borrow();
+                let at = a.flat_index(&index).ok_or_else(|| {
+                    loc.error(format!("index {index:?} is outside `{w}` of size {:?}", a.dims))
+                })?;
+                let v = a.items[at]
+                    .clone()
+                    .ok_or_else(|| loc.error(format!("`{w}{index:?}` is not set")))?;
+                if !accept(&v) {
+                    return Err(loc.error(format!("`{w}{index:?}` is {}, not {what}", v.kind())));
+                }
+                return Ok(Some(v));
+            }
+            Some(v) if accept(&v) => v,
+            _ => return Ok(None),
+        };
+        self.next()?;
+        Ok(Some(value))
+    }
+
     /// An identifier's value, innermost scope first.
     pub fn lookup(&self, name: &str) -> Option<&Value> {
         self.scopes.iter().rev().find_map(|s| s.get(name))
@@ -421,6 +466,9 @@ impl Parser {
             "macro" => self.define_macro(loc),
             "version" => {
                 self.version = self.float()?;
+                if self.frames.len() == 1 && self.main_version.is_none() {
+                    self.main_version = Some(self.version);
+                }
                 self.eat_symbol(";")?;
                 Ok(())
             }
@@ -452,7 +500,15 @@ impl Parser {
     }
 
     fn declare(&mut self, local: bool, loc: &Loc) -> Result<(), LoadError> {
-        let name = self.raw_name(loc)?;
+        let mut name = self.raw_name(loc)?;
+        // `#declare deprecated [once] "message" Name = …`.
+        if &*name == "deprecated" {
+            if self.raw_peek_is_word("once") {
+                self.raw();
+            }
+            self.string()?;
+            name = self.raw_name(loc)?;
+        }
         if is_reserved(&name) {
             return Err(self
                 .last

@@ -269,6 +269,8 @@ impl Parser {
                 }
                 "color_map" | "colour_map" => return Ok(Value::ColorMap(Rc::new(self.color_map()?))),
                 "camera" => return Ok(Value::Camera(Rc::new(self.camera_block(&loc)?))),
+                // A sky sphere is kept as its pigment.
+                "sky_sphere" => return Ok(Value::Pigment(Rc::new(self.sky_sphere()?))),
                 "light_source" => return Ok(Value::Light(Rc::new(self.light_block(&loc)?))),
                 "transform" => {
                     self.push_back(t.clone());
@@ -290,7 +292,7 @@ impl Parser {
                 }
                 "function" | "spline" | "media" | "density" | "pigment_map" | "normal_map"
                 | "slope_map" | "texture_map" | "material_map" | "density_map" | "rainbow"
-                | "fog" | "sky_sphere" | "isosurface_" => {
+                | "fog" | "isosurface_" => {
                     if self.peek()?.is_some_and(|t| t.is_symbol("(")) {
                         self.skip_parens()?;
                     }
@@ -642,6 +644,9 @@ impl Parser {
     fn sky_sphere(&mut self) -> Result<Pigment, LoadError> {
         self.expect_symbol("{")?;
         let mut pigment = None;
+        if let Some(Value::Pigment(q)) = self.take_named("a sky_sphere", |v| matches!(v, Value::Pigment(_)))? {
+            pigment = Some((*q).clone());
+        }
         loop {
             let t = self.expect_any("`}`")?;
             match &t.tok {

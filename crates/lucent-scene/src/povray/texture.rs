@@ -24,11 +24,33 @@ pub enum Pattern {
     Mapped(Rc<str>, DVec3, Rc<ColorMap>),
 }
 
+/// How a pattern's value is shaped: POV-Ray's wave, frequency, phase and turbulence.
+#[derive(Clone, Debug, Default)]
+pub struct Shaping {
+    /// `ramp_wave`, `triangle_wave`, `sine_wave`, `scallop_wave`, `cubic_wave`, `poly_wave`
+    /// (with its exponent); `None`: the pattern's own.
+    pub wave: Option<(Rc<str>, f64)>,
+    /// `frequency`.
+    pub frequency: Option<f64>,
+    /// `phase`.
+    pub phase: Option<f64>,
+    /// `turbulence`.
+    pub turbulence: Option<DVec3>,
+    /// `octaves`, `omega`, `lambda`.
+    pub octaves: Option<f64>,
+    /// See `octaves`.
+    pub omega: Option<f64>,
+    /// See `octaves`.
+    pub lambda: Option<f64>,
+}
+
 /// A pigment: its pattern, placed by `transform` (pattern space to object space).
 #[derive(Clone, Debug)]
 pub struct Pigment {
     /// What it is.
     pub pattern: Pattern,
+    /// Its value's shaping.
+    pub shaping: Shaping,
     /// Its transforms, composed.
     pub transform: DAffine3,
     /// Where it was written.
@@ -40,6 +62,7 @@ impl Pigment {
     pub fn solid(c: Vect, loc: Loc) -> Self {
         Self {
             pattern: Pattern::Solid(c),
+            shaping: Shaping::default(),
             transform: DAffine3::IDENTITY,
             loc,
         }
@@ -151,12 +174,14 @@ impl Parser {
         // An identifier first: the pigment (or colour) it names.
         if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone()) {
             match self.lookup(&w).cloned() {
-                Some(Value::Pigment(q)) => {
-                    self.next()?;
-                    p = (*q).clone();
-                }
                 Some(Value::Vector(_) | Value::Float(_)) => p.pattern = Pattern::Solid(self.color_body()?),
-                _ => {}
+                _ => {
+                    if let Some(Value::Pigment(q)) =
+                        self.take_named("a pigment", |v| matches!(v, Value::Pigment(_)))?
+                    {
+                        p = (*q).clone();
+                    }
+                }
             }
         }
         loop {
@@ -214,12 +239,18 @@ impl Parser {
                         self.skip_braces()?;
                     }
                 }
-                "turbulence" | "octaves" | "omega" | "lambda" | "frequency" | "phase" => {
-                    self.expression()?;
+                "turbulence" => p.shaping.turbulence = Some(self.vec3()?),
+                "octaves" => p.shaping.octaves = Some(self.float()?),
+                "omega" => p.shaping.omega = Some(self.float()?),
+                "lambda" => p.shaping.lambda = Some(self.float()?),
+                "frequency" => p.shaping.frequency = Some(self.float()?),
+                "phase" => p.shaping.phase = Some(self.float()?),
+                "ramp_wave" | "triangle_wave" | "sine_wave" | "scallop_wave" | "cubic_wave" => {
+                    p.shaping.wave = Some((w.clone(), 1.0));
                 }
-                "ramp_wave" | "triangle_wave" | "sine_wave" | "scallop_wave" | "cubic_wave" => {}
                 "poly_wave" => {
-                    self.float()?;
+                    let e = if self.starts_value()? { self.float()? } else { 1.0 };
+                    p.shaping.wave = Some((w.clone(), e));
                 }
                 "warp" => self.skip_braces()?,
                 "quick_color" | "quick_colour" => {
@@ -310,10 +341,7 @@ impl Parser {
     pub fn finish_block(&mut self) -> Result<Finish, LoadError> {
         self.expect_symbol("{")?;
         let mut f = Finish::default();
-        if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone())
-            && let Some(Value::Finish(q)) = self.lookup(&w).cloned()
-        {
-            self.next()?;
+        if let Some(Value::Finish(q)) = self.take_named("a finish", |v| matches!(v, Value::Finish(_)))? {
             f = (*q).clone();
         }
         loop {
@@ -448,10 +476,7 @@ impl Parser {
             transform: DAffine3::IDENTITY,
             ..Texture::default()
         };
-        if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone())
-            && let Some(Value::Texture(q)) = self.lookup(&w).cloned()
-        {
-            self.next()?;
+        if let Some(Value::Texture(q)) = self.take_named("a texture", |v| matches!(v, Value::Texture(_)))? {
             tex = (*q).clone();
         }
         loop {

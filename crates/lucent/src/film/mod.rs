@@ -39,6 +39,43 @@ pub struct FilmData {
     pub samples: Vec<u32>,
 }
 
+/// How a film's values become an image's bytes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Display {
+    /// Linear light, encoded as sRGB (lucent's own).
+    #[default]
+    Srgb,
+    /// Values in a space of this gamma (POV-Ray's `assumed_gamma`): `v^gamma` is linear light,
+    /// encoded as sRGB.
+    Gamma(f32),
+    /// Values written as they are, without gamma correction (POV-Ray's scenes older than 3.7
+    /// without `assumed_gamma`).
+    Raw,
+}
+
+impl Display {
+    /// The linear light of value `v` (an EXR's value).
+    pub fn linear(self, v: f32) -> f32 {
+        match self {
+            Display::Srgb => v,
+            Display::Gamma(g) => v.max(0.0).powf(g),
+            Display::Raw => tonemap::srgb_to_linear(v),
+        }
+    }
+
+    /// The byte of value `v` (clamped to [0, 1]; NaN as 0).
+    pub fn byte(self, v: f32) -> u8 {
+        match self {
+            Display::Srgb => tonemap::srgb8(v),
+            Display::Gamma(g) => tonemap::srgb8(if v > 0.0 { v.powf(g) } else { 0.0 }),
+            Display::Raw => {
+                let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+                (v * 255.0 + 0.5) as u8
+            }
+        }
+    }
+}
+
 impl Film {
     /// An empty film (no samples).
     pub fn new(width: u32, height: u32) -> Self {
@@ -196,6 +233,11 @@ impl Film {
     /// The image in 8-bit sRGB (r, g, b bytes), row by row from the top: [`Film::to_linear_rgb`]
     /// encoded by [`tonemap::srgb8`], made in parallel without the linear image.
     pub fn to_srgb8(&self) -> Vec<u8> {
+        self.to_8bit(Display::Srgb)
+    }
+
+    /// The image in 8-bit bytes as `display` says its values are shown.
+    pub fn to_8bit(&self, display: Display) -> Vec<u8> {
         use rayon::prelude::*;
         let width = self.width as usize;
         let mut bytes = zeroed_vec(3 * self.sums.len());
@@ -205,7 +247,7 @@ impl Film {
             .for_each(|(y, row)| {
                 for (x, out) in row.chunks_exact_mut(3).enumerate() {
                     let p = self.pixel(x as u32, y as u32).to_array();
-                    out.copy_from_slice(&p.map(tonemap::srgb8));
+                    out.copy_from_slice(&p.map(|v| display.byte(v)));
                 }
             });
         bytes

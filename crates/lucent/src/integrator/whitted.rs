@@ -280,7 +280,7 @@ impl Whitted {
         // The media on either side, for the rays that leave the surface.
         let interface = scene.medium_interface(hit.object);
 
-        let mut color = m.ka * scene.ambient;
+        let mut color = scene.ambient_coefficient(m, hit) * scene.ambient;
         if (entering || m.emits_back) && m.emits() {
             color += m.emission(&scene.tex_coords(m, hit, 1.0), &scene.images);
         }

@@ -355,6 +355,8 @@ impl Surface {
 pub struct Material {
     /// Ambient coefficient, multiplies the scene's ambient light `Ia`.
     pub ka: Rgb,
+    /// A texture multiplying `ka` (POV-Ray's ambient term follows the pigment's pattern).
+    pub ka_map: Option<Texture>,
     /// Diffuse coefficient (a texture): Lambert's `kd·max(N·L, 0)`.
     pub kd: Texture,
     /// Specular coefficient of the Phong highlight `ks·max(R·V, 0)^shininess`.
@@ -398,6 +400,7 @@ impl Default for Material {
     fn default() -> Self {
         Self {
             ka: Rgb::BLACK,
+            ka_map: None,
             kd: Texture::Solid(Rgb::BLACK),
             ks: Rgb::BLACK,
             shininess: 0.0,
@@ -446,6 +449,7 @@ impl Material {
         let (c, approx) = classic::nearest(&surface, images);
         let m = Self {
             ka: c.ka,
+            ka_map: None,
             kd: c.kd,
             ks: c.ks,
             shininess: c.shininess,

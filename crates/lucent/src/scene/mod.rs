@@ -335,6 +335,14 @@ impl Scene {
         }
     }
 
+    /// The ambient coefficient of `m` at `hit`: `ka`, times `ka_map` looked up there.
+    pub fn ambient_coefficient(&self, m: &Material, hit: &SurfaceHit) -> Rgb {
+        match &m.ka_map {
+            Some(t) => m.ka * t.eval(&self.tex_coords(m, hit, 1.0), &self.images),
+            None => m.ka,
+        }
+    }
+
     /// The diffuse colour of `m` at `hit`: its texture there filtered over the camera's
     /// one-pixel footprint (the classic integrators trace no ray differentials, and take
     /// pbrt-v4's camera approximation at every bounce; a pixel's few samples then see the

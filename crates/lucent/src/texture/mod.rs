@@ -13,9 +13,11 @@
 
 pub mod checker;
 pub mod image;
+pub mod pattern;
 pub mod transform;
 
 pub use checker::{Checker, UvChecker};
+pub use pattern::{Pattern, PatternKind, Turbulence, Wave};
 pub use image::{Filter, ImageTexture, Texel, Wrap};
 pub use transform::UvTransform;
 
@@ -135,6 +137,8 @@ pub enum Texture {
     Checker(Checker),
     /// A checkerboard over texture coordinates (Mitsuba's `checkerboard`).
     UvChecker(UvChecker),
+    /// A solid pattern placed in the world (POV-Ray's pigments).
+    Pattern(Box<Pattern>),
     /// An image.
     Image(ImageMap),
     /// The mesh's vertex colour (Mitsuba's `mesh_attribute` of `vertex_color`); white on
@@ -189,6 +193,7 @@ impl Texture {
             Texture::Solid(c) => *c,
             Texture::Checker(c) => c.eval_at(at.p, at.world),
             Texture::UvChecker(c) => c.eval(at.uv),
+            Texture::Pattern(p) => p.eval(at.world),
             Texture::Image(m) => m.eval(at, images),
             Texture::VertexColor => at.color,
             Texture::Product(a, b) => bounded(a.eval(at, images) * b.eval(at, images)),
@@ -218,6 +223,10 @@ impl Texture {
             Texture::Solid(c) => *c,
             Texture::Checker(c) => (c.even + c.odd) * 0.5,
             Texture::UvChecker(c) => (c.even + c.odd) * 0.5,
+            Texture::Pattern(p) => {
+                let n = p.map.len().max(1) as f32;
+                p.map.iter().fold(Rgb::BLACK, |s, e| s + e.1) * (1.0 / n)
+            }
             Texture::Image(m) => m.mean(images),
             Texture::VertexColor => Rgb::WHITE,
             Texture::Product(a, b) => bounded(a.mean(images) * b.mean(images)),
@@ -248,7 +257,9 @@ impl Texture {
     #[inline(always)]
     pub fn uses_uv(&self) -> bool {
         match self {
-            Texture::Solid(_) | Texture::Checker(_) | Texture::VertexColor => false,
+            Texture::Solid(_) | Texture::Checker(_) | Texture::Pattern(_) | Texture::VertexColor => {
+                false
+            }
             Texture::UvChecker(_) | Texture::Image(_) => true,
             _ => self.any_child_uses_uv(),
         }
