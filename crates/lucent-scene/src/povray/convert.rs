@@ -358,7 +358,9 @@ impl Convert<'_> {
         let black = Pigment::solid(Vect::splat(0.0, 5), at.clone());
         let pigment = pigment.unwrap_or(&black);
         let avg = pigment.average();
-        let opacity = |c: &Vect| (1.0 - c.c[3] - c.c[4]).clamp(0.0, 1.0);
+        // Not clamped: POV-Ray lets `transmit 100` make a surface's own light negative (a
+        // contrast trick of its sample scenes).
+        let opacity = |c: &Vect| 1.0 - c.c[3] - c.c[4];
         let diffuse = f.diffuse.unwrap_or(0.6);
         let ambient = f.ambient.unwrap_or(DVec3::splat(0.1));
         let metallic = f.metallic.unwrap_or(0.0);

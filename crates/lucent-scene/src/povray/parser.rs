@@ -42,6 +42,9 @@ enum Block {
 pub struct Parser {
     frames: Vec<Frame>,
     scopes: Vec<HashMap<Rc<str>, Value>>,
+    /// A macro's parameters given an identifier, by scope: `#declare` of the parameter
+    /// assigns that identifier too (POV-Ray passes identifiers by reference).
+    aliases: Vec<HashMap<Rc<str>, Rc<str>>>,
     blocks: Vec<(Block, usize)>,
     peeked: Option<Token>,
     last: Loc,
@@ -96,6 +99,7 @@ impl Parser {
         Self {
             frames: Vec::new(),
             scopes: vec![HashMap::new()],
+            aliases: vec![HashMap::new()],
             blocks: Vec::new(),
             peeked: None,
             last: Loc {
@@ -149,6 +153,7 @@ impl Parser {
         }
         if scoped {
             self.scopes.push(HashMap::new());
+            self.aliases.push(HashMap::new());
         }
         self.frames.push(Frame {
             tokens,
@@ -196,24 +201,21 @@ impl Parser {
             && f.scoped
         {
             self.scopes.pop();
+            self.aliases.pop();
         }
     }
 
-    /// The next raw token, left in place.
+    /// The next raw token, left in place (a macro body or include that ends here stays open
+    /// until that token is read: its scope is still the one assignments go to).
     fn raw_peek(&mut self) -> Option<&Token> {
         if self.peeked.is_some() {
             return self.peeked.as_ref();
         }
-        loop {
-            let depth = self.frames.len();
-            let frame = self.frames.last()?;
-            if frame.pos < frame.end {
-                return self.frames[depth - 1].tokens.get(self.frames[depth - 1].pos);
-            }
-            // A macro body or include ends here: its scope goes with it only when the
-            // token after it is read, but its place is gone.
-            self.close_frame();
-        }
+        self.frames
+            .iter()
+            .rev()
+            .find(|f| f.pos < f.end)
+            .map(|f| &f.tokens[f.pos])
     }
 
     /// Whether the next raw token (directives not carried out) is the word `w`.
@@ -374,9 +376,17 @@ impl Parser {
     /// Sets `name` in the global scope (`#declare`) or the innermost (`#local`).
     pub fn set(&mut self, name: Rc<str>, value: Value, local: bool) {
         if !local {
-            // POV-Ray: `#declare` of a name local somewhere assigns the innermost such.
-            if let Some(scope) = self.scopes.iter_mut().rev().find(|s| s.contains_key(&name)) {
-                scope.insert(name, value);
+            // POV-Ray: `#declare` of a name local somewhere assigns the innermost such; a
+            // macro's parameter given an identifier assigns that identifier too.
+            if let Some(i) = self.scopes.iter().rposition(|s| s.contains_key(&name)) {
+                let target = self.aliases[i].get(&name).cloned();
+                self.scopes[i].insert(name, value.clone());
+                if let Some(target) = target {
+                    let below = &mut self.scopes[..i];
+                    if let Some(scope) = below.iter_mut().rev().find(|s| s.contains_key(&target)) {
+                        scope.insert(target, value);
+                    }
+                }
                 return;
             }
             self.scopes[0].insert(name, value);
@@ -813,8 +823,10 @@ impl Parser {
     fn call(&mut self, m: &Rc<Macro>, loc: &Loc) -> Result<(), LoadError> {
         self.expect_symbol("(")?;
         let mut args = Vec::new();
+        let mut by_name = Vec::new();
         if !self.eat_symbol(")")? {
             loop {
+                by_name.push(self.lone_identifier()?);
                 args.push(self.declared_value()?);
                 if self.eat_symbol(")")? {
                     break;
@@ -835,7 +847,33 @@ impl Parser {
         for (p, a) in m.params.iter().zip(args) {
             scope.insert(p.clone(), a);
         }
+        let aliases = self.aliases.last_mut().expect("pushed above");
+        for (p, name) in m.params.iter().zip(by_name) {
+            if let Some(name) = name {
+                aliases.insert(p.clone(), name);
+            }
+        }
         Ok(())
+    }
+
+    /// The identifier a macro's argument is, when it is one alone (`M(Thing, 2)`), left to
+    /// be read.
+    fn lone_identifier(&mut self) -> Result<Option<Rc<str>>, LoadError> {
+        let Some(Token {
+            tok: Tok::Word(w), ..
+        }) = self.peek()?.cloned()
+        else {
+            return Ok(None);
+        };
+        if self.lookup(&w).is_none() {
+            return Ok(None);
+        }
+        let t = self.next()?.expect("peeked");
+        let alone = self
+            .peek_plain()
+            .is_some_and(|n| n.is_symbol(",") || n.is_symbol(")"));
+        self.push_back(t);
+        Ok(alone.then_some(w))
     }
 }
 

@@ -82,8 +82,10 @@ fn objects_declared_and_placed() {
 fn errors_name_the_place_and_what_was_expected() {
     let e = error("sphere { <0, 0, 0>, 1\n  pigment { colour rgb <1, 0, 0> }\n  bogus 3 }");
     assert!(e.starts_with("t.pov:3:3: `bogus` is not an object modifier"), "{e}");
-    let e = error("#declare X = 1;\nsphere { <0, 0 0>, X }");
-    assert!(e.starts_with("t.pov:2:16: expected `,`"), "{e}");
+    let e = error("#declare X = 1;\nsphere { <0, 0, 0>, }");
+    assert!(e.starts_with("t.pov:2:21: expected a value, found `}`"), "{e}");
+    let e = error("sphere { <0, 0, 0>, 1");
+    assert!(e.contains("the file ends where `}` was expected"), "{e}");
     let e = error("#if (1)\nsphere { 0, 1 }\n");
     assert!(e.contains("never closed by `#end`"), "{e}");
     let e = error("sphere { 0, Radius }");
@@ -94,4 +96,22 @@ fn errors_name_the_place_and_what_was_expected() {
     assert!(e.contains("nest more than"), "{e}");
     let e = error("#while (1) #end");
     assert!(e.contains("turned more than"), "{e}");
+}
+
+#[test]
+fn a_macro_assigns_an_identifier_passed_to_it() {
+    let (s, p) = read(
+        "#macro Grow(Stuff, By)\n #declare Stuff = Stuff + By;\n#end\n#declare R = 1;\nGrow(R, 2)\nsphere { 0, R }",
+    );
+    assert!(matches!(p.lookup("R"), Some(super::value::Value::Float(3.0))), "{:?}", p.lookup("R"));
+    assert_eq!(spheres(&s), [(0.0, 0.0, 0.0, 3.0)]);
+}
+
+#[test]
+fn a_macro_turns_an_object_passed_to_it() {
+    let (s, _) = read(
+        "#macro Turn_Me(Stuff,Degrees,Axis)\n    #declare Stuff=object{Stuff rotate Axis*Degrees}\n#end\n#declare Thing = sphere{x, 1}\nTurn_Me(Thing,90,z)\nobject{Thing}",
+    );
+    let p = s.objects[0].transform.transform_point3(glam::DVec3::X);
+    assert!((p - glam::DVec3::Y).length() < 1e-9, "{p}");
 }
