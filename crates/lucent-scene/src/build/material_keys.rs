@@ -25,7 +25,7 @@ const COMMON: &[&str] = &[
 fn takes(kind: MaterialKind) -> &'static [&'static str] {
     const ROUGH: [&str; 4] = ["roughness", "roughness_u", "roughness_v", "distribution"];
     match kind {
-        MaterialKind::Whitted => &["ka", "ka_map", "kd", "ks", "shininess", "kr", "kt", "ior"],
+        MaterialKind::Whitted => &["ka", "ka_map", "kd", "ks", "shininess", "highlight", "brilliance", "kr", "kt", "ior"],
         MaterialKind::Diffuse => &["reflectance"],
         MaterialKind::Null => &[],
         MaterialKind::Conductor => &["specular", "eta", "k", "metal"],
@@ -121,6 +121,8 @@ pub(super) fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(),
         ("kd", at(d.kd.is_some())),
         ("ks", at(d.ks.is_some())),
         ("shininess", span(&d.shininess)),
+        ("highlight", span(&d.highlight)),
+        ("brilliance", span(&d.brilliance)),
         ("kr", at(d.kr.is_some())),
         ("kt", at(d.kt.is_some())),
         ("ior", span(&d.ior)),

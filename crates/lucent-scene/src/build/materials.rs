@@ -239,6 +239,27 @@ fn classic(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Material, Loa
         Some(t) => ctx.texture(t, m.span(), Slot::Color)?,
         None => Texture::Solid(Rgb::BLACK),
     };
+    let blinn = match &d.highlight {
+        None => false,
+        Some(h) => match h.get_ref().as_str() {
+            "phong" => false,
+            "blinn" => true,
+            other => {
+                return Err(ctx.source.error(
+                    h.span(),
+                    format!("unknown highlight `{other}` (phong or blinn)"),
+                ));
+            }
+        },
+    };
+    let brilliance = d.brilliance.as_ref().map_or(Ok(1.0), |b| {
+        let v = b.get_ref().0;
+        if v > 0.0 && v <= 1000.0 {
+            Ok(v)
+        } else {
+            Err(ctx.source.error(b.span(), "brilliance must be in (0, 1000]"))
+        }
+    })?;
     let ka_map = match &d.ka_map {
         Some(t) => Some(ctx.texture(t, m.span(), Slot::Color)?),
         None => None,
@@ -249,6 +270,8 @@ fn classic(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Material, Loa
         kd,
         ks: c(d.ks),
         shininess: d.shininess.as_ref().map_or(0.0, |s| s.get_ref().0),
+        blinn,
+        brilliance,
         kr: c(d.kr),
         kt: c(d.kt),
         ior: index_of_refraction(ctx, &d.ior, "ior", 1.0)?,

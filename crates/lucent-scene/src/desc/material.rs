@@ -112,6 +112,12 @@ pub struct MaterialDesc {
     /// Phong exponent, ≥ 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shininess: Option<Spanned<Finite>>,
+    /// The highlight: `"phong"` (default) or `"blinn"` (POV-Ray's `specular`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub highlight: Option<Spanned<String>>,
+    /// The exponent of `N·L` in the diffuse term (POV-Ray's `brilliance`; default 1), > 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub brilliance: Option<Spanned<Finite>>,
     /// Mirror reflection coefficient.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kr: Option<super::Color>,
@@ -298,6 +304,8 @@ impl MaterialDesc {
             kd: None,
             ks: None,
             shininess: None,
+            highlight: None,
+            brilliance: None,
             kr: None,
             kt: None,
             ior: None,

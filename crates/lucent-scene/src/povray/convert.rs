@@ -341,7 +341,10 @@ impl Convert<'_> {
             }
         }
         let m = self.whitted(pigment.as_deref(), &finish, ior, &o.loc);
-        let key = format!("{:?}", (&m.ka, &m.ka_map, &m.kd, &m.ks, &m.shininess, &m.kr, &m.kt, &m.ior));
+        let key = format!(
+            "{:?}",
+            (&m.ka, &m.ka_map, &m.kd, &m.ks, &m.shininess, &m.highlight, &m.brilliance, &m.kr, &m.kt, &m.ior)
+        );
         if let Some(name) = self.by_key.get(&key) {
             return name.clone();
         }
@@ -386,8 +389,8 @@ impl Convert<'_> {
             m.ka = Some(Color(rgb(ka + extra)));
         }
         m.kd = Some(kd);
-        if f.brilliance.is_some_and(|b| (b - 1.0).abs() > 1e-9) {
-            self.warn(at, "`brilliance` is not read by lucent (N·L to the power 1)");
+        if let Some(b) = f.brilliance.filter(|b| (b - 1.0).abs() > 1e-9) {
+            m.brilliance = Some(span(Finite(b.clamp(1e-3, 1000.0) as f32)));
         }
         let tint = |k: f64| {
             let c = avg.v3();
@@ -402,10 +405,11 @@ impl Convert<'_> {
                 self.warn(at, "`specular` beside `phong`: lucent draws the phong highlight only");
             }
         } else if specular > 0.0 {
-            // Blinn's (N·H)^(1/roughness) is close to Phong's (R·V)^(1/(4·roughness)).
+            // Blinn's highlight (N·H)^(1/roughness).
             let roughness = f.roughness.unwrap_or(0.05).max(1e-4);
             m.ks = Some(Color(rgb(tint(specular))));
-            m.shininess = Some(span(Finite((0.25 / roughness) as f32)));
+            m.shininess = Some(span(Finite((1.0 / roughness) as f32)));
+            m.highlight = Some(span("blinn".to_string()));
         }
         if let Some(r) = f.reflection {
             let c = avg.v3();

@@ -4,6 +4,9 @@
 //! I = ka·Ia + Σ_j S_j · I_j · att_j · (kd·max(N·L, 0) + ks·max(R·V, 0)^shininess) + kr·Ir + kt·It
 //! ```
 //!
+//! (A material may ask for POV-Ray's variants: `N·L` to the power `brilliance`, and Blinn's
+//! highlight `ks·max(N·H, 0)^shininess` with `H` halfway between `L` and `V`.)
+//!
 //! - `N` is the unit normal turned to face the incoming ray, `V` points back along it, `L` to
 //!   light `j`, `R` is `L` mirrored about `N`. A light behind the surface (`N·L ≤ 0`) adds
 //!   neither diffuse nor specular light.
@@ -314,9 +317,19 @@ impl Whitted {
                 t.record.light(j, s, Rgb::BLACK);
                 continue;
             }
-            let r = reflect(-l.to_light, n);
-            let specular = m.ks * r.dot(v).max(0.0).powf(m.shininess);
-            let term = s * l.intensity * (kd * n_dot_l + specular);
+            let highlight = if m.blinn {
+                let h = (l.to_light + v).normalize_or_zero();
+                n.dot(h)
+            } else {
+                reflect(-l.to_light, n).dot(v)
+            };
+            let specular = m.ks * highlight.max(0.0).powf(m.shininess);
+            let diffuse = if m.brilliance == 1.0 {
+                n_dot_l
+            } else {
+                n_dot_l.powf(m.brilliance)
+            };
+            let term = s * l.intensity * (kd * diffuse + specular);
             t.record.light(j, s, term);
             color += term;
         }

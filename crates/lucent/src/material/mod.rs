@@ -363,6 +363,11 @@ pub struct Material {
     pub ks: Rgb,
     /// Phong exponent; larger is a smaller, sharper highlight.
     pub shininess: f32,
+    /// The highlight is Blinn's `ks·max(N·H, 0)^shininess` (H halfway between L and V, POV-Ray's
+    /// `specular`) instead of Phong's.
+    pub blinn: bool,
+    /// The exponent of `N·L` in the diffuse term (POV-Ray's `brilliance`; 1 is Lambert's).
+    pub brilliance: f32,
     /// Mirror reflection coefficient: the weight of the reflected ray's colour `Ir`.
     pub kr: Rgb,
     /// Transmission coefficient: the weight of the refracted ray's colour `It`.
@@ -404,6 +409,8 @@ impl Default for Material {
             kd: Texture::Solid(Rgb::BLACK),
             ks: Rgb::BLACK,
             shininess: 0.0,
+            blinn: false,
+            brilliance: 1.0,
             kr: Rgb::BLACK,
             kt: Rgb::BLACK,
             ior: 1.0,
@@ -453,6 +460,8 @@ impl Material {
             kd: c.kd,
             ks: c.ks,
             shininess: c.shininess,
+            blinn: false,
+            brilliance: 1.0,
             kr: c.kr,
             kt: c.kt,
             ior: c.ior,
