@@ -5,8 +5,8 @@
 //! carry the samples per pixel reached in their metadata (`lucent.samples`: `N`, or `MIN..MAX`
 //! when a stopped render left pixels at different counts).
 
-use lucent::film::Display;
 use anyhow::{Context, anyhow, bail};
+use lucent::film::Display;
 use lucent::film::Film;
 use std::fs::File;
 use std::io::{BufWriter, Write};

@@ -190,7 +190,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         if plan.shard.count > 1 {
             write_film(&plan.output, &rendered.film, &meta)
         } else {
-            write_image_as(&rendered.film, &plan.output, plan.format, plan.job.loaded.display)
+            write_image_as(
+                &rendered.film,
+                &plan.output,
+                plan.format,
+                plan.job.loaded.display,
+            )
         }
         .with_context(|| format!("cannot write {}", plan.output.display()))?;
         let sampled = match adaptive {
@@ -225,8 +230,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
 
     if matches!(settings.integrator, Integrator::Sppm(_)) {
         // The photon statistics are not in a film: what there is, is the image.
-        write_image_as(&rendered.film, &plan.output, plan.format, plan.job.loaded.display)
-            .with_context(|| format!("cannot write {}", plan.output.display()))?;
+        write_image_as(
+            &rendered.film,
+            &plan.output,
+            plan.format,
+            plan.job.loaded.display,
+        )
+        .with_context(|| format!("cannot write {}", plan.output.display()))?;
         let reached = format!("{least} of {} iterations", settings.spp);
         println!("{}", summary(&plan.output, w, h, &reached, &rendered.stats));
         eprintln!(
@@ -244,8 +254,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let image = if plan.shard.count > 1 {
         "no partial film (the shard is unfinished)".to_string()
     } else {
-        write_image_as(&rendered.film, &plan.output, plan.format, plan.job.loaded.display)
-            .with_context(|| format!("cannot write {}", plan.output.display()))?;
+        write_image_as(
+            &rendered.film,
+            &plan.output,
+            plan.format,
+            plan.job.loaded.display,
+        )
+        .with_context(|| format!("cannot write {}", plan.output.display()))?;
         println!("{}", summary(&plan.output, w, h, &reached, &rendered.stats));
         format!("the partial image to {}", plan.output.display())
     };

@@ -25,7 +25,18 @@ const COMMON: &[&str] = &[
 fn takes(kind: MaterialKind) -> &'static [&'static str] {
     const ROUGH: [&str; 4] = ["roughness", "roughness_u", "roughness_v", "distribution"];
     match kind {
-        MaterialKind::Whitted => &["ka", "ka_map", "kd", "ks", "shininess", "highlight", "brilliance", "kr", "kt", "ior"],
+        MaterialKind::Whitted => &[
+            "ka",
+            "ka_map",
+            "kd",
+            "ks",
+            "shininess",
+            "highlight",
+            "brilliance",
+            "kr",
+            "kt",
+            "ior",
+        ],
         MaterialKind::Diffuse => &["reflectance"],
         MaterialKind::Null => &[],
         MaterialKind::Conductor => &["specular", "eta", "k", "metal"],

@@ -257,7 +257,9 @@ fn classic(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Material, Loa
         if v > 0.0 && v <= 1000.0 {
             Ok(v)
         } else {
-            Err(ctx.source.error(b.span(), "brilliance must be in (0, 1000]"))
+            Err(ctx
+                .source
+                .error(b.span(), "brilliance must be in (0, 1000]"))
         }
     })?;
     let ka_map = match &d.ka_map {

@@ -15,7 +15,6 @@ pub mod shapes;
 mod solids;
 pub mod textures;
 
-use lucent::film::Display;
 use crate::desc::settings::{
     FilterName, FilterSamplingName, RenderDesc, SamplingName, TriangleTestName,
 };
@@ -29,6 +28,7 @@ use glam::DVec3;
 use lucent::Rgb;
 use lucent::accel::AccelKind;
 use lucent::camera::Camera;
+use lucent::film::Display;
 use lucent::film::filter::Filter;
 use lucent::film::splat::FilterSampling;
 use lucent::integrator::{DebugView, Integrator, PathTracer, Sppm, Whitted};
@@ -452,8 +452,17 @@ fn display(image: &crate::desc::ImageDesc, source: &Source) -> Result<Display, L
         None => Ok(Display::Srgb),
         Some(g) => {
             let v = g.get_ref().0;
-            check(source, g.span(), v > 0.0 && v <= 10.0, "the image's gamma must be in (0, 10]")?;
-            Ok(if v == 1.0 { Display::Srgb } else { Display::Gamma(v) })
+            check(
+                source,
+                g.span(),
+                v > 0.0 && v <= 10.0,
+                "the image's gamma must be in (0, 10]",
+            )?;
+            Ok(if v == 1.0 {
+                Display::Srgb
+            } else {
+                Display::Gamma(v)
+            })
         }
     }
 }

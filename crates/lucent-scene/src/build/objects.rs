@@ -151,6 +151,18 @@ pub fn add_object(
             }
             Ok(surface)
         }
+        ObjectKind::Triangles => {
+            let mesh = inline_mesh(ctx, d, table.clone())?;
+            let surface = emissive.then(|| surface(&mesh, Affine3A::IDENTITY));
+            if let Some(m) = &motion {
+                moved_at_start(ctx, d, m, Affine3A::IDENTITY)?;
+            }
+            let id = ctx.builder.mesh(mesh, material);
+            if let Some(m) = motion {
+                ctx.builder.motion(id, m);
+            }
+            Ok(surface)
+        }
         _ => {
             let transform = placement(ctx, d, o.span())?;
             let flipped = d.flip_normals.unwrap_or(false);
@@ -227,6 +239,57 @@ pub fn add_object(
     }
 }
 
+/// The mesh a `triangles` object writes out: every index within `positions`, `normals` one
+/// per position (zero normals make the mesh flat).
+fn inline_mesh(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<Mesh, LoadError> {
+    let source = ctx.source;
+    let kind = d.kind.name();
+    let positions = required(source, table.clone(), kind, "positions", &d.positions)?;
+    let indices = required(source, table, kind, "indices", &d.indices)?;
+    let n = positions.get_ref().len();
+    check(
+        source,
+        positions.span(),
+        n > 0,
+        "a mesh needs at least one position",
+    )?;
+    check(
+        source,
+        indices.span(),
+        !indices.get_ref().is_empty(),
+        "a mesh needs at least one triangle",
+    )?;
+    if let Some(bad) = indices
+        .get_ref()
+        .iter()
+        .flatten()
+        .find(|&&i| i as usize >= n)
+    {
+        return Err(source.error(
+            indices.span(),
+            format!("index {bad} is past the {n} positions"),
+        ));
+    }
+    let points = positions.get_ref().iter().map(|p| ctx.local(p.0)).collect();
+    let mut mesh = Mesh::new(points, indices.get_ref().clone());
+    if let Some(normals) = &d.normals {
+        let ns = normals.get_ref();
+        check(
+            source,
+            normals.span(),
+            ns.len() == n,
+            &format!(
+                "{} normals for {n} positions: give one per position",
+                ns.len()
+            ),
+        )?;
+        if ns.iter().all(|v| v.0.length_squared() > 0.0) {
+            mesh.normals = ns.iter().map(|v| v.0.normalize()).collect();
+        }
+    }
+    Ok(mesh)
+}
+
 /// Refuses the keys of table `o` that its kind does not take (`child`: it is a combination's
 /// child, which may be `inverse`).
 pub(super) fn check_keys(
@@ -242,6 +305,9 @@ pub(super) fn check_keys(
         ("point", span(&d.point)),
         ("normal", span(&d.normal)),
         ("vertices", span(&d.vertices)),
+        ("positions", span(&d.positions)),
+        ("indices", span(&d.indices)),
+        ("normals", span(&d.normals)),
         ("file", span(&d.file)),
         ("part", span(&d.part)),
         ("smooth", d.smooth.map(|_| o.span())),
@@ -274,6 +340,7 @@ pub(super) fn check_keys(
         ObjectKind::Sphere => vec!["center", "radius", "uv_axes"],
         ObjectKind::Plane => vec!["point", "normal"],
         ObjectKind::Triangle => vec!["vertices"],
+        ObjectKind::Triangles => vec!["positions", "indices", "normals"],
         ObjectKind::Mesh => ["file", "part", "smooth"]
             .into_iter()
             .chain(PLACED)

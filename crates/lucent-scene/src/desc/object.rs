@@ -14,6 +14,9 @@ pub enum ObjectKind {
     Plane,
     /// `vertices` (three points).
     Triangle,
+    /// `positions`, `indices` (three per triangle), `normals` (one per position, for smooth
+    /// shading): a mesh written in the scene file.
+    Triangles,
     /// `file` (OBJ, PLY, glTF), `part`, `smooth`, and a placement.
     Mesh,
     /// The square `[-1, 1]²` in the plane z = 0, facing +z, and a placement.
@@ -53,6 +56,7 @@ impl ObjectKind {
             ObjectKind::Sphere => "sphere",
             ObjectKind::Plane => "plane",
             ObjectKind::Triangle => "triangle",
+            ObjectKind::Triangles => "triangles",
             ObjectKind::Mesh => "mesh",
             ObjectKind::Rectangle => "rectangle",
             ObjectKind::Cube => "cube",
@@ -150,6 +154,15 @@ pub struct ObjectDesc {
     /// Triangle: three corners, counter-clockwise seen from the front.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vertices: Option<Spanned<[Point; 3]>>,
+    /// Triangles: the vertices.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub positions: Option<Spanned<Vec<Point>>>,
+    /// Triangles: three indices into `positions` per triangle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub indices: Option<Spanned<Vec<[u32; 3]>>>,
+    /// Triangles: a normal per position (smooth shading); default none (flat).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normals: Option<Spanned<Vec<Vector>>>,
     /// Mesh: an OBJ, PLY, glTF or GLB file, relative to the scene file's folder.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<Spanned<String>>,
@@ -217,6 +230,9 @@ impl ObjectDesc {
             point: None,
             normal: None,
             vertices: None,
+            positions: None,
+            indices: None,
+            normals: None,
             file: None,
             part: None,
             smooth: None,

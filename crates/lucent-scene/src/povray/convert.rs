@@ -91,7 +91,10 @@ pub fn convert(
         .map(|c| rgb(c.v3()))
         .or_else(|| {
             scene.sky.as_ref().map(|p| {
-                cx.warn(&p.loc, "a sky_sphere is shown as the background's one colour (its pigment's average)");
+                cx.warn(
+                    &p.loc,
+                    "a sky_sphere is shown as the background's one colour (its pigment's average)",
+                );
                 rgb(p.average().v3())
             })
         })
@@ -153,14 +156,22 @@ fn default_camera(file: &Loc) -> Camera {
 /// lucent's camera for POV-Ray's: `angle` sets the direction's length from the right
 /// vector's; `look_at` turns direction, right and up about `location` with `sky` up, keeping
 /// their lengths; the vertical field of view is `2·atan(|up| / 2|direction|)`.
-fn camera(c: &Camera, size: (u32, u32), warnings: &mut Vec<String>) -> Result<CameraDesc, LoadError> {
+fn camera(
+    c: &Camera,
+    size: (u32, u32),
+    warnings: &mut Vec<String>,
+) -> Result<CameraDesc, LoadError> {
     let (mut d, mut r, mut u) = (c.direction, c.right, c.up);
     if d.length() == 0.0 || r.length() == 0.0 || u.length() == 0.0 {
-        return Err(c.loc.error("the camera's direction, right and up must not be zero"));
+        return Err(c
+            .loc
+            .error("the camera's direction, right and up must not be zero"));
     }
     if let Some(a) = c.angle {
         if !(0.0..180.0).contains(&a) || a == 0.0 {
-            return Err(c.loc.error(format!("the camera's angle must be in (0, 180) degrees, not {a}")));
+            return Err(c.loc.error(format!(
+                "the camera's angle must be in (0, 180) degrees, not {a}"
+            )));
         }
         d = d.normalize() * (0.5 * r.length() / (a.to_radians() / 2.0).tan());
     }
@@ -173,9 +184,15 @@ fn camera(c: &Camera, size: (u32, u32), warnings: &mut Vec<String>) -> Result<Ca
         // Left-handed: right = sky × direction.
         let right = c.sky.cross(dn);
         if right.length() < 1e-12 {
-            return Err(c.loc.error("the camera looks along its sky vector: which way is up is undefined"));
+            return Err(c
+                .loc
+                .error("the camera looks along its sky vector: which way is up is undefined"));
         }
-        let handed = if c.up.cross(c.direction).dot(c.right) < 0.0 { -1.0 } else { 1.0 };
+        let handed = if c.up.cross(c.direction).dot(c.right) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
         let rn = right.normalize() * handed;
         let un = dn.cross(rn).normalize() * handed;
         d = dn * d.length();
@@ -194,7 +211,11 @@ fn camera(c: &Camera, size: (u32, u32), warnings: &mut Vec<String>) -> Result<Ca
     }
     let m = c.transform;
     let eye = m.transform_point3(c.location);
-    let (d, r, u) = (m.transform_vector3(d), m.transform_vector3(r), m.transform_vector3(u));
+    let (d, r, u) = (
+        m.transform_vector3(d),
+        m.transform_vector3(r),
+        m.transform_vector3(u),
+    );
     let aspect = r.length() / u.length();
     let image_aspect = f64::from(size.0) / f64::from(size.1);
     if (aspect / image_aspect - 1.0).abs() > 0.01 {
@@ -227,7 +248,10 @@ fn light(l: &Light, cx: &mut Convert) -> Vec<LightDesc> {
         cx.warn(&l.loc, "a shadowless light casts shadows in lucent");
     }
     if l.fade.is_some_and(|(d, p)| d > 0.0 && p > 0.0) {
-        cx.warn(&l.loc, "a light's fade_distance and fade_power are not read by lucent (no falloff)");
+        cx.warn(
+            &l.loc,
+            "a light's fade_distance and fade_power are not read by lucent (no falloff)",
+        );
     }
     let color = Color(rgb(l.color));
     let mut out = Vec::new();
@@ -249,9 +273,17 @@ fn light(l: &Light, cx: &mut Convert) -> Vec<LightDesc> {
     }
     let (n, m) = l.area.map_or((1, 1), |a| (a.2, a.3));
     let (n, m) = if n * m > MAX_AREA_LIGHTS {
-        cx.warn(&l.loc, format!("an area light of {n}×{m} is sampled by {MAX_AREA_LIGHTS} point lights at most"));
+        cx.warn(
+            &l.loc,
+            format!(
+                "an area light of {n}×{m} is sampled by {MAX_AREA_LIGHTS} point lights at most"
+            ),
+        );
         let k = (f64::from(MAX_AREA_LIGHTS) / f64::from(n * m)).sqrt();
-        (((f64::from(n) * k) as u32).max(1), ((f64::from(m) * k) as u32).max(1))
+        (
+            ((f64::from(n) * k) as u32).max(1),
+            ((f64::from(m) * k) as u32).max(1),
+        )
     } else {
         (n, m)
     };
@@ -260,8 +292,16 @@ fn light(l: &Light, cx: &mut Convert) -> Vec<LightDesc> {
         for j in 0..m {
             let mut p = l.position;
             if let Some((a, b, _, _)) = l.area {
-                let s = if n > 1 { f64::from(i) / f64::from(n - 1) - 0.5 } else { 0.0 };
-                let t = if m > 1 { f64::from(j) / f64::from(m - 1) - 0.5 } else { 0.0 };
+                let s = if n > 1 {
+                    f64::from(i) / f64::from(n - 1) - 0.5
+                } else {
+                    0.0
+                };
+                let t = if m > 1 {
+                    f64::from(j) / f64::from(m - 1) - 0.5
+                } else {
+                    0.0
+                };
                 p += a * s + b * t;
             }
             let mut d = if l.kind == PovLight::Spot {
@@ -331,7 +371,10 @@ impl Convert<'_> {
         }
         if let Some(loc) = tex.and_then(|t| t.normal.as_ref()) {
             let loc = loc.clone();
-            self.warn(&loc, "a `normal` (bump pattern) is not read by lucent: the surface is smooth");
+            self.warn(
+                &loc,
+                "a `normal` (bump pattern) is not read by lucent: the surface is smooth",
+            );
         }
         let ior = o.interior.as_ref().and_then(|i| i.ior).unwrap_or(1.0);
         if let Some(i) = &o.interior {
@@ -343,7 +386,18 @@ impl Convert<'_> {
         let m = self.whitted(pigment.as_deref(), &finish, ior, &o.loc);
         let key = format!(
             "{:?}",
-            (&m.ka, &m.ka_map, &m.kd, &m.ks, &m.shininess, &m.highlight, &m.brilliance, &m.kr, &m.kt, &m.ior)
+            (
+                &m.ka,
+                &m.ka_map,
+                &m.kd,
+                &m.ks,
+                &m.shininess,
+                &m.highlight,
+                &m.brilliance,
+                &m.kr,
+                &m.kt,
+                &m.ior
+            )
         );
         if let Some(name) = self.by_key.get(&key) {
             return name.clone();
@@ -357,7 +411,13 @@ impl Convert<'_> {
     }
 
     /// POV-Ray's lighting terms as Whitted's coefficients.
-    fn whitted(&mut self, pigment: Option<&Pigment>, f: &Finish, ior: f64, at: &Loc) -> MaterialDesc {
+    fn whitted(
+        &mut self,
+        pigment: Option<&Pigment>,
+        f: &Finish,
+        ior: f64,
+        at: &Loc,
+    ) -> MaterialDesc {
         let black = Pigment::solid(Vect::splat(0.0, 5), at.clone());
         let pigment = pigment.unwrap_or(&black);
         let avg = pigment.average();
@@ -384,8 +444,14 @@ impl Convert<'_> {
         if let Some(e) = f.emission.filter(|e| *e != DVec3::ZERO) {
             // `emission` adds like ambient light of 1: folded into `ka` over `Ia`.
             let ia = self.ambient_light.max(DVec3::splat(1e-6));
-            let ka = m.ka.map_or(DVec3::ZERO, |c| DVec3::new(c.0.r.into(), c.0.g.into(), c.0.b.into()));
-            let extra = if m.ka_map.is_some() { e / ia } else { e * avg.v3() * opacity(&avg) / ia };
+            let ka = m.ka.map_or(DVec3::ZERO, |c| {
+                DVec3::new(c.0.r.into(), c.0.g.into(), c.0.b.into())
+            });
+            let extra = if m.ka_map.is_some() {
+                e / ia
+            } else {
+                e * avg.v3() * opacity(&avg) / ia
+            };
             m.ka = Some(Color(rgb(ka + extra)));
         }
         m.kd = Some(kd);
@@ -402,7 +468,10 @@ impl Convert<'_> {
             m.ks = Some(Color(rgb(tint(phong))));
             m.shininess = Some(span(Finite(f.phong_size.unwrap_or(40.0) as f32)));
             if specular > 0.0 {
-                self.warn(at, "`specular` beside `phong`: lucent draws the phong highlight only");
+                self.warn(
+                    at,
+                    "`specular` beside `phong`: lucent draws the phong highlight only",
+                );
             }
         } else if specular > 0.0 {
             // Blinn's highlight (N·H)^(1/roughness).
@@ -443,7 +512,10 @@ impl Convert<'_> {
             Pattern::Solid(_) => return None,
             Pattern::Checker(pair) => {
                 let (Some(a), Some(b)) = (solid(&pair[0]), solid(&pair[1])) else {
-                    self.warn(&p.loc, "a checker of patterns is shown by its average colour");
+                    self.warn(
+                        &p.loc,
+                        "a checker of patterns is shown by its average colour",
+                    );
                     return None;
                 };
                 return Some(TextureDesc::Checker(Checker {
@@ -456,10 +528,18 @@ impl Convert<'_> {
             Pattern::Hexagon(three) => {
                 let cs: Vec<Option<Vect>> = three.iter().map(solid).collect();
                 if cs.iter().any(Option::is_none) {
-                    self.warn(&p.loc, "a hexagon of patterns is shown by its average colour");
+                    self.warn(
+                        &p.loc,
+                        "a hexagon of patterns is shown by its average colour",
+                    );
                     return None;
                 }
-                let map = cs.iter().flatten().enumerate().map(|(i, c)| (i as f32, lit(c))).collect();
+                let map = cs
+                    .iter()
+                    .flatten()
+                    .enumerate()
+                    .map(|(i, c)| (i as f32, lit(c)))
+                    .collect();
                 (PatternKind::Hexagon, map, Wave::Ramp)
             }
             Pattern::Mapped(name, axis, map) => {
@@ -480,12 +560,22 @@ impl Convert<'_> {
                     "ripples" | "waves" => (PatternKind::Ripples, Wave::Ramp),
                     "wrinkles" => (PatternKind::Wrinkles, Wave::Ramp),
                     other => {
-                        self.warn(&p.loc, format!("the `{other}` pattern is shown by its colour map's average colour"));
+                        self.warn(
+                            &p.loc,
+                            format!(
+                                "the `{other}` pattern is shown by its colour map's average colour"
+                            ),
+                        );
                         return None;
                     }
                 };
-                if matches!(kind, PatternKind::Noise | PatternKind::Granite | PatternKind::Agate | PatternKind::Wrinkles)
-                    || p.shaping.turbulence.is_some()
+                if matches!(
+                    kind,
+                    PatternKind::Noise
+                        | PatternKind::Granite
+                        | PatternKind::Agate
+                        | PatternKind::Wrinkles
+                ) || p.shaping.turbulence.is_some()
                 {
                     self.warn(&p.loc, format!("the `{name}` pattern's noise is lucent's own: its grain differs from POV-Ray's"));
                 }
@@ -528,6 +618,61 @@ impl Convert<'_> {
         t
     }
 
+    /// A mesh's triangles (degenerate ones left out, as POV-Ray does), placed by `m`: one
+    /// `triangles` object per texture they wear.
+    fn mesh(
+        &mut self,
+        o: &Object,
+        mesh: &super::scene::Mesh,
+        inherited: Option<&Rc<Texture>>,
+        m: &DAffine3,
+    ) -> Vec<ObjectDesc> {
+        let normal_map = m.matrix3.inverse().transpose();
+        let own = self.material(o, inherited);
+        let mut groups: Vec<(String, ObjectDesc)> = Vec::new();
+        for (k, tri) in mesh.points.chunks_exact(3).enumerate() {
+            let v = [tri[0], tri[1], tri[2]].map(|p| point(m.transform_point3(p)));
+            let area = (v[1] - v[0]).cross(v[2] - v[0]).length();
+            if area <= 1e-12 * (v[1] - v[0]).length_squared().max(f64::MIN_POSITIVE) {
+                continue;
+            }
+            let name = match mesh.textures.as_ref().and_then(|ts| ts.get(k)) {
+                Some(Some(t)) => {
+                    let mut worn = o.clone();
+                    worn.texture = Some(t.clone());
+                    self.material(&worn, None)
+                }
+                _ => own.clone(),
+            };
+            let at = match groups.iter().position(|(n, _)| *n == name) {
+                Some(i) => i,
+                None => {
+                    let mut d = ObjectDesc::new(ObjectKind::Triangles, &name);
+                    d.positions = Some(span(Vec::new()));
+                    d.indices = Some(span(Vec::new()));
+                    if mesh.normals.is_some() {
+                        d.normals = Some(span(Vec::new()));
+                    }
+                    groups.push((name, d));
+                    groups.len() - 1
+                }
+            };
+            let d = &mut groups[at].1;
+            let positions = d.positions.as_mut().expect("made above").get_mut();
+            let first = positions.len() as u32;
+            positions.extend(v.map(Point));
+            let indices = d.indices.as_mut().expect("made above").get_mut();
+            indices.push([first, first + 1, first + 2]);
+            if let (Some(ns), Some(out)) = (&mesh.normals, d.normals.as_mut()) {
+                let out = out.get_mut();
+                for n in &ns[3 * k..3 * k + 3] {
+                    out.push(Vector(point(normal_map * *n).as_vec3()));
+                }
+            }
+        }
+        groups.into_iter().map(|(_, d)| d).collect()
+    }
+
     /// The description of an object (several for a mesh: one per triangle), `None` when
     /// nothing of it is drawn.
     fn object(
@@ -544,7 +689,10 @@ impl Convert<'_> {
             Shape::Light(_) => return Ok(None),
             Shape::Unread(name) => {
                 if &**name != "material" {
-                    self.warn(&o.loc, format!("the shape `{name}` is not read by lucent and is left out"));
+                    self.warn(
+                        &o.loc,
+                        format!("the shape `{name}` is not read by lucent and is left out"),
+                    );
                 }
                 return Ok(None);
             }
@@ -562,7 +710,10 @@ impl Convert<'_> {
                 d.point = Some(span(Point(point(p))));
                 d.normal = Some(span(Vector(point(normal).normalize().as_vec3())));
                 if !top {
-                    self.warn(&o.loc, "a plane inside a combination is not read by lucent and is left out");
+                    self.warn(
+                        &o.loc,
+                        "a plane inside a combination is not read by lucent and is left out",
+                    );
                     return Ok(None);
                 }
                 d.material = span(self.material(o, inherited));
@@ -616,29 +767,13 @@ impl Convert<'_> {
             }
             Shape::Mesh(mesh) => {
                 if !top {
-                    self.warn(&o.loc, "triangles inside a combination are not read by lucent and are left out");
+                    self.warn(
+                        &o.loc,
+                        "triangles inside a combination are not read by lucent and are left out",
+                    );
                     return Ok(None);
                 }
-                if mesh.normals.is_some() {
-                    self.warn(&o.loc, "smooth triangles are drawn flat by lucent's POV-Ray reader");
-                }
-                let name = self.material(o, inherited);
-                let mut out = Vec::new();
-                for (k, tri) in mesh.points.chunks_exact(3).enumerate() {
-                    let v = [tri[0], tri[1], tri[2]].map(|p| point(m.transform_point3(p)));
-                    if (v[1] - v[0]).cross(v[2] - v[0]).length() <= 1e-12 * (v[1] - v[0]).length_squared().max(1e-300) {
-                        continue;
-                    }
-                    let mut d = ObjectDesc::new(ObjectKind::Triangle, &name);
-                    if let Some(Some(t)) = mesh.textures.as_ref().and_then(|ts| ts.get(k)) {
-                        let mut own = o.clone();
-                        own.texture = Some(t.clone());
-                        d.material = span(self.material(&own, None));
-                    }
-                    d.vertices = Some(span(v.map(Point)));
-                    out.push(d);
-                }
-                return Ok(Some(out));
+                return Ok(Some(self.mesh(o, mesh, inherited, &m)));
             }
             Shape::Csg(kind, children) => {
                 let mut d = ObjectDesc::new(
@@ -676,8 +811,15 @@ impl Convert<'_> {
                 if kids.len() == 1 && *kind != CsgKind::Intersection {
                     let mut only = kids.pop().map(Spanned::into_inner).expect("one child");
                     // One part: itself, placed by the combination.
-                    let inner = only.transform.map(|t| t.into_inner().0).unwrap_or(DMat4::IDENTITY);
-                    let outer = if top { affine(&m) } else { affine(&o.transform) };
+                    let inner = only
+                        .transform
+                        .map(|t| t.into_inner().0)
+                        .unwrap_or(DMat4::IDENTITY);
+                    let outer = if top {
+                        affine(&m)
+                    } else {
+                        affine(&o.transform)
+                    };
                     only.transform = Some(span(Matrix(DMat4::from(outer) * inner)));
                     if top {
                         fill_material(&mut only, &self.material(o, inherited));
@@ -701,7 +843,10 @@ impl Convert<'_> {
             d.material = span(self.material(o, inherited));
         }
         if o.no_shadow {
-            self.warn(&o.loc, "`no_shadow` is not read by lucent: the object casts shadows");
+            self.warn(
+                &o.loc,
+                "`no_shadow` is not read by lucent: the object casts shadows",
+            );
         }
         Ok(Some(vec![d]))
     }
@@ -716,7 +861,10 @@ fn fill_material(d: &mut ObjectDesc, m: &str) {
 
 /// The shape's own points and directions moved into the mirrored object space.
 fn mirror_shape(d: &mut ObjectDesc) {
-    for p in [&mut d.center, &mut d.base, &mut d.cap].into_iter().flatten() {
+    for p in [&mut d.center, &mut d.base, &mut d.cap]
+        .into_iter()
+        .flatten()
+    {
         *p = span(Point(point(p.get_ref().0)));
     }
     if let (Some(a), Some(b)) = (&d.min, &d.max) {

@@ -88,7 +88,7 @@ impl Parser {
                 Some(t) if t.is_symbol("|") => "|",
                 _ => return Ok(a),
             };
-            self.next()?;
+            self.next_token()?;
             let loc = self.loc();
             let b = self.comparison(compare)?;
             let (x, y) = (truth(&a, &loc)?, truth(&b, &loc)?);
@@ -108,7 +108,7 @@ impl Parser {
             }) => *s,
             _ => return Ok(a),
         };
-        self.next()?;
+        self.next_token()?;
         let loc = self.loc();
         let b = self.additive()?;
         let result = match (&a, &b) {
@@ -137,7 +137,7 @@ impl Parser {
                 Some(t) if t.is_symbol("-") => '-',
                 _ => return Ok(a),
             };
-            self.next()?;
+            self.next_token()?;
             let loc = self.loc();
             let b = self.term()?;
             a = arithmetic(op, &a, &b, &loc)?;
@@ -152,7 +152,7 @@ impl Parser {
                 Some(t) if t.is_symbol("/") => '/',
                 _ => return Ok(a),
             };
-            self.next()?;
+            self.next_token()?;
             let loc = self.loc();
             let b = self.unary()?;
             a = arithmetic(op, &a, &b, &loc)?;
@@ -180,7 +180,7 @@ impl Parser {
     /// `.x`, `.red`, …: one component.
     fn postfix(&mut self, mut a: Scalar) -> Result<Scalar, LoadError> {
         while self.peek_plain().is_some_and(|t| t.is_symbol(".")) {
-            self.next()?;
+            self.next_token()?;
             let t = self.expect_any("a component's name")?;
             let i = match &t.tok {
                 Tok::Word(w) => match &**w {
@@ -196,7 +196,11 @@ impl Parser {
                     }
                     _ => return Err(t.loc.error(format!("`.{w}` is not a component"))),
                 },
-                _ => return Err(t.loc.error(format!("expected a component, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected a component, found {}", t.tok)));
+                }
             };
             a = Scalar::F(vector_of(&a, &t.loc)?.c[i]);
         }
@@ -244,8 +248,7 @@ impl Parser {
     pub fn color_body(&mut self) -> Result<Vect, LoadError> {
         let mut c = Vect::splat(0.0, 5);
         let mut any = false;
-        loop {
-            let Some(t) = self.peek()? else { break };
+        while let Some(t) = self.peek()?.cloned() {
             let word = match &t.tok {
                 Tok::Word(w) => w.clone(),
                 _ if !any => {
@@ -275,7 +278,7 @@ impl Parser {
                 }
                 _ => break,
             };
-            self.next()?;
+            self.next_token()?;
             c.c[component] = self.float()?;
             any = true;
         }
@@ -312,8 +315,18 @@ impl Parser {
                     n: 4,
                 }));
             }
-            "u" => return Ok(Scalar::V(Vect { c: [1.0, 0.0, 0.0, 0.0, 0.0], n: 2 })),
-            "v" => return Ok(Scalar::V(Vect { c: [0.0, 1.0, 0.0, 0.0, 0.0], n: 2 })),
+            "u" => {
+                return Ok(Scalar::V(Vect {
+                    c: [1.0, 0.0, 0.0, 0.0, 0.0],
+                    n: 2,
+                }));
+            }
+            "v" => {
+                return Ok(Scalar::V(Vect {
+                    c: [0.0, 1.0, 0.0, 0.0, 0.0],
+                    n: 2,
+                }));
+            }
             "clock" | "initial_clock" | "final_clock" | "clock_on" | "frame_number"
             | "initial_frame" | "final_frame" => return Ok(Scalar::F(0.0)),
             "clock_delta" => return Ok(Scalar::F(1.0)),
@@ -342,7 +355,10 @@ impl Parser {
                 }
                 let a = a.borrow();
                 let at = a.flat_index(&index).ok_or_else(|| {
-                    loc.error(format!("index {index:?} is outside `{w}` of size {:?}", a.dims))
+                    loc.error(format!(
+                        "index {index:?} is outside `{w}` of size {:?}",
+                        a.dims
+                    ))
                 })?;
                 match &a.items[at] {
                     Some(Value::Float(v)) => Ok(Scalar::F(*v)),
@@ -359,9 +375,9 @@ impl Parser {
                 "`{w}` is {}, where a number, vector or string is wanted",
                 other.kind()
             ))),
-            None if is_keyword(&w) => Err(loc.error(format!(
-                "`{w}` where a number, vector or string is wanted"
-            ))),
+            None if is_keyword(&w) => {
+                Err(loc.error(format!("`{w}` where a number, vector or string is wanted")))
+            }
             None => Err(loc.error(format!("`{w}` is not declared"))),
         }
     }
@@ -407,10 +423,14 @@ impl Parser {
                 self.expect_symbol("(")?;
                 let name = match self.expect_any("an identifier")?.tok {
                     Tok::Word(n) => n,
-                    other => return Err(loc.error(format!("expected an identifier, found {other}"))),
+                    other => {
+                        return Err(loc.error(format!("expected an identifier, found {other}")));
+                    }
                 };
                 self.expect_symbol(")")?;
-                return Ok(Some(Scalar::F(f64::from(u8::from(self.lookup(&name).is_some())))));
+                return Ok(Some(Scalar::F(f64::from(u8::from(
+                    self.lookup(&name).is_some(),
+                )))));
             }
             "dimension_size" | "dimensions" => return self.array_size(w, loc).map(Some),
             "file_exists" => {
@@ -439,7 +459,10 @@ impl Parser {
             _ => args.len() == arity,
         };
         if !ok {
-            return Err(loc.error(format!("`{w}` takes {arity} arguments, given {}", args.len())));
+            return Err(loc.error(format!(
+                "`{w}` takes {arity} arguments, given {}",
+                args.len()
+            )));
         }
         super::functions::call(self, w, &args, loc).map(Some)
     }
@@ -590,8 +613,8 @@ fn arithmetic(op: char, a: &Scalar, b: &Scalar, loc: &Loc) -> Result<Scalar, Loa
             };
             let (x, y) = (promote(x, a), promote(y, b));
             let mut c = [0.0; 5];
-            for i in 0..n {
-                c[i] = f(x.c[i], y.c[i]);
+            for (i, out) in c.iter_mut().enumerate().take(n) {
+                *out = f(x.c[i], y.c[i]);
             }
             Ok(Scalar::V(Vect { c, n }))
         }
@@ -602,15 +625,57 @@ fn arithmetic(op: char, a: &Scalar, b: &Scalar, loc: &Loc) -> Result<Scalar, Loa
 pub fn is_keyword(w: &str) -> bool {
     matches!(
         w,
-        "finish" | "normal" | "pigment" | "texture" | "interior" | "translate" | "rotate"
-            | "scale" | "matrix" | "transform" | "no_shadow" | "hollow" | "inverse"
-            | "spotlight" | "parallel" | "area_light" | "fade_distance" | "fade_power"
-            | "shadowless" | "point_at" | "radius" | "falloff" | "tightness" | "looks_like"
-            | "media_interaction" | "media_attenuation" | "adaptive" | "jitter" | "circular"
-            | "orient" | "area_illumination" | "cylinder" | "projected_through"
-            | "photons" | "quick_color" | "quick_colour" | "frequency" | "phase" | "ramp_wave"
-            | "triangle_wave" | "sine_wave" | "scallop_wave" | "cubic_wave" | "poly_wave"
-            | "turbulence" | "octaves" | "omega" | "lambda" | "warp" | "color_map"
-            | "colour_map" | "pigment_map"
+        "finish"
+            | "normal"
+            | "pigment"
+            | "texture"
+            | "interior"
+            | "translate"
+            | "rotate"
+            | "scale"
+            | "matrix"
+            | "transform"
+            | "no_shadow"
+            | "hollow"
+            | "inverse"
+            | "spotlight"
+            | "parallel"
+            | "area_light"
+            | "fade_distance"
+            | "fade_power"
+            | "shadowless"
+            | "point_at"
+            | "radius"
+            | "falloff"
+            | "tightness"
+            | "looks_like"
+            | "media_interaction"
+            | "media_attenuation"
+            | "adaptive"
+            | "jitter"
+            | "circular"
+            | "orient"
+            | "area_illumination"
+            | "cylinder"
+            | "projected_through"
+            | "photons"
+            | "quick_color"
+            | "quick_colour"
+            | "frequency"
+            | "phase"
+            | "ramp_wave"
+            | "triangle_wave"
+            | "sine_wave"
+            | "scallop_wave"
+            | "cubic_wave"
+            | "poly_wave"
+            | "turbulence"
+            | "octaves"
+            | "omega"
+            | "lambda"
+            | "warp"
+            | "color_map"
+            | "colour_map"
+            | "pigment_map"
     )
 }

@@ -57,7 +57,11 @@ pub fn call(p: &mut Parser, w: &str, args: &[Scalar], loc: &Loc) -> Result<Scala
         "max" | "min" => {
             let mut m = f(0)?;
             for i in 1..args.len() {
-                m = if w == "max" { m.max(f(i)?) } else { m.min(f(i)?) };
+                m = if w == "max" {
+                    m.max(f(i)?)
+                } else {
+                    m.min(f(i)?)
+                };
             }
             num(m)
         }
@@ -98,7 +102,10 @@ pub fn call(p: &mut Parser, w: &str, args: &[Scalar], loc: &Loc) -> Result<Scala
         "strupr" => Ok(Scalar::S(s(0)?.to_uppercase().into())),
         "strlwr" => Ok(Scalar::S(s(0)?.to_lowercase().into())),
         "chr" => Ok(Scalar::S(
-            char::from_u32(f(0)? as u32).unwrap_or('?').to_string().into(),
+            char::from_u32(f(0)? as u32)
+                .unwrap_or('?')
+                .to_string()
+                .into(),
         )),
         "asc" => num(s(0)?.chars().next().map_or(0.0, |c| f64::from(c as u32))),
         "val" => num(s(0)?.trim().parse::<f64>().unwrap_or(0.0)),
@@ -112,7 +119,11 @@ pub fn call(p: &mut Parser, w: &str, args: &[Scalar], loc: &Loc) -> Result<Scala
         "substr" => {
             let text = s(0)?;
             let (start, len) = (f(1)? as usize, f(2)? as usize);
-            let out: String = text.chars().skip(start.saturating_sub(1)).take(len).collect();
+            let out: String = text
+                .chars()
+                .skip(start.saturating_sub(1))
+                .take(len)
+                .collect();
             Ok(Scalar::S(out.into()))
         }
         "str" => Ok(Scalar::S(format_number(f(0)?, f(1)?, f(2)?).into())),

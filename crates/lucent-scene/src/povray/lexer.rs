@@ -270,7 +270,14 @@ mod tests {
         assert_eq!(t[3], Tok::Number(15.0));
         assert!(t.contains(&Tok::Number(0.5)));
         assert_eq!(t.last(), Some(&Tok::Symbol("}")));
-        assert_eq!(kinds("a<=b"), [Tok::Word("a".into()), Tok::Symbol("<="), Tok::Word("b".into())]);
+        assert_eq!(
+            kinds("a<=b"),
+            [
+                Tok::Word("a".into()),
+                Tok::Symbol("<="),
+                Tok::Word("b".into())
+            ]
+        );
     }
 
     #[test]

@@ -86,7 +86,14 @@ pub fn import_povray(
         column: 1,
     };
     let mut warnings = std::mem::take(&mut p.warnings);
-    let desc = convert::convert(&scene, p.main_version, &p.defaults, size, &mut warnings, &file)?;
+    let desc = convert::convert(
+        &scene,
+        p.main_version,
+        &p.defaults,
+        size,
+        &mut warnings,
+        &file,
+    )?;
     Ok(Imported {
         desc,
         camera_given: true,
@@ -112,7 +119,14 @@ pub fn import_povray_text(
         column: 1,
     };
     let mut warnings = std::mem::take(&mut p.warnings);
-    let desc = convert::convert(&scene, p.main_version, &p.defaults, size, &mut warnings, &file)?;
+    let desc = convert::convert(
+        &scene,
+        p.main_version,
+        &p.defaults,
+        size,
+        &mut warnings,
+        &file,
+    )?;
     Ok(Imported {
         desc,
         camera_given: true,

@@ -34,8 +34,17 @@ struct Frame {
 enum Block {
     If,
     Switch,
-    While { frame: usize, cond: usize },
-    For { frame: usize, body: usize, var: Rc<str>, to: f64, step: f64 },
+    While {
+        frame: usize,
+        cond: usize,
+    },
+    For {
+        frame: usize,
+        body: usize,
+        var: Rc<str>,
+        to: f64,
+        step: f64,
+    },
 }
 
 /// The parser's state: the stacked token sources, the scopes and the open blocks.
@@ -224,7 +233,7 @@ impl Parser {
     }
 
     /// The next token, directives carried out and macros called.
-    pub fn next(&mut self) -> Result<Option<Token>, LoadError> {
+    pub fn next_token(&mut self) -> Result<Option<Token>, LoadError> {
         if let Some(t) = self.peeked.take() {
             self.last = t.loc.clone();
             return Ok(Some(t));
@@ -237,7 +246,9 @@ impl Parser {
             }
             let Some(t) = self.raw() else {
                 if let Some((_, _)) = self.blocks.last() {
-                    return Err(self.last.error("a `#if`, `#while`, `#for` or `#switch` is never closed by `#end`"));
+                    return Err(self.last.error(
+                        "a `#if`, `#while`, `#for` or `#switch` is never closed by `#end`",
+                    ));
                 }
                 return Ok(None);
             };
@@ -259,7 +270,7 @@ impl Parser {
 
     /// The next token, an error at the end of the input.
     pub fn expect_any(&mut self, what: &str) -> Result<Token, LoadError> {
-        match self.next()? {
+        match self.next_token()? {
             Some(t) => Ok(t),
             None => Err(self
                 .last
@@ -271,7 +282,7 @@ impl Parser {
     pub fn peek(&mut self) -> Result<Option<&Token>, LoadError> {
         if self.peeked.is_none() {
             let last = self.last.clone();
-            self.peeked = self.next()?;
+            self.peeked = self.next_token()?;
             self.last = last;
         }
         Ok(self.peeked.as_ref())
@@ -301,7 +312,7 @@ impl Parser {
     /// Whether the next plain token is the symbol `s`; consumed when it is.
     pub fn eat_symbol(&mut self, s: &str) -> Result<bool, LoadError> {
         if self.peek_plain().is_some_and(|t| t.is_symbol(s)) {
-            self.next()?;
+            self.next_token()?;
             return Ok(true);
         }
         Ok(false)
@@ -310,7 +321,7 @@ impl Parser {
     /// Whether the next token (directives carried out) is the word `w`; consumed when it is.
     pub fn eat_word(&mut self, w: &str) -> Result<bool, LoadError> {
         if self.peek()?.is_some_and(|t| t.is_word(w)) {
-            self.next()?;
+            self.next_token()?;
             return Ok(true);
         }
         Ok(false)
@@ -343,7 +354,7 @@ impl Parser {
         };
         let value = match self.lookup(&w).cloned() {
             Some(Value::Array(a)) => {
-                self.next()?;
+                self.next_token()?;
                 let mut index = Vec::new();
                 while self.eat_symbol("[")? {
                     index.push(self.float()?);
@@ -351,7 +362,10 @@ impl Parser {
                 }
                 let a = a.borrow();
                 let at = a.flat_index(&index).ok_or_else(|| {
-                    loc.error(format!("index {index:?} is outside `{w}` of size {:?}", a.dims))
+                    loc.error(format!(
+                        "index {index:?} is outside `{w}` of size {:?}",
+                        a.dims
+                    ))
                 })?;
                 let v = a.items[at]
                     .clone()
@@ -364,7 +378,7 @@ impl Parser {
             Some(v) if accept(&v) => v,
             _ => return Ok(None),
         };
-        self.next()?;
+        self.next_token()?;
         Ok(Some(value))
     }
 
@@ -504,7 +518,9 @@ impl Parser {
             Some(Token {
                 tok: Tok::Word(w), ..
             }) => Ok(w),
-            Some(t) => Err(t.loc.error(format!("expected an identifier, found {}", t.tok))),
+            Some(t) => Err(t
+                .loc
+                .error(format!("expected an identifier, found {}", t.tok))),
             None => Err(loc.error("the file ends where an identifier was expected")),
         }
     }
@@ -520,9 +536,9 @@ impl Parser {
             name = self.raw_name(loc)?;
         }
         if is_reserved(&name) {
-            return Err(self
-                .last
-                .error(format!("`{name}` is a POV-Ray keyword, not a name to declare")));
+            return Err(self.last.error(format!(
+                "`{name}` is a POV-Ray keyword, not a name to declare"
+            )));
         }
         // An array element: `#declare A[i][j] = …`.
         let mut index = Vec::new();
@@ -738,7 +754,9 @@ impl Parser {
             } => {
                 self.turn(loc)?;
                 let Some(Value::Float(i)) = self.lookup(&var).cloned() else {
-                    return Err(loc.error(format!("the loop's variable `{var}` is no longer a number")));
+                    return Err(
+                        loc.error(format!("the loop's variable `{var}` is no longer a number"))
+                    );
                 };
                 let i = i + step;
                 self.set(var.clone(), Value::Float(i), false);
@@ -799,7 +817,10 @@ impl Parser {
                 None => return Err(loc.error("the file ends in a macro's parameters")),
             }
         }
-        let frame = self.frames.last().ok_or_else(|| loc.error("a macro outside a file"))?;
+        let frame = self
+            .frames
+            .last()
+            .ok_or_else(|| loc.error("a macro outside a file"))?;
         let tokens = frame.tokens.clone();
         let start = frame.pos;
         let depth = self.frames.len();
@@ -868,7 +889,7 @@ impl Parser {
         if self.lookup(&w).is_none() {
             return Ok(None);
         }
-        let t = self.next()?.expect("peeked");
+        let t = self.next_token()?.expect("peeked");
         let alone = self
             .peek_plain()
             .is_some_and(|n| n.is_symbol(",") || n.is_symbol(")"));
@@ -881,8 +902,23 @@ impl Parser {
 fn is_reserved(name: &str) -> bool {
     matches!(
         name,
-        "sphere" | "box" | "plane" | "union" | "object" | "texture" | "pigment" | "finish"
-            | "camera" | "light_source" | "x" | "y" | "z" | "pi" | "rgb" | "color" | "colour"
+        "sphere"
+            | "box"
+            | "plane"
+            | "union"
+            | "object"
+            | "texture"
+            | "pigment"
+            | "finish"
+            | "camera"
+            | "light_source"
+            | "x"
+            | "y"
+            | "z"
+            | "pi"
+            | "rgb"
+            | "color"
+            | "colour"
     )
 }
 

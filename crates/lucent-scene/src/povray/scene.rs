@@ -177,15 +177,49 @@ pub struct PovScene {
 }
 
 const SHAPES: [&str; 19] = [
-    "sphere", "plane", "box", "cylinder", "cone", "torus", "disc", "superellipsoid", "triangle",
-    "smooth_triangle", "mesh", "mesh2", "union", "intersection", "difference", "merge", "object",
-    "polygon", "light_source",
+    "sphere",
+    "plane",
+    "box",
+    "cylinder",
+    "cone",
+    "torus",
+    "disc",
+    "superellipsoid",
+    "triangle",
+    "smooth_triangle",
+    "mesh",
+    "mesh2",
+    "union",
+    "intersection",
+    "difference",
+    "merge",
+    "object",
+    "polygon",
+    "light_source",
 ];
 
 const UNREAD_SHAPES: [&str; 21] = [
-    "blob", "height_field", "isosurface", "julia_fractal", "lathe", "sor", "prism", "text",
-    "parametric", "sphere_sweep", "bicubic_patch", "quadric", "quartic", "poly", "cubic",
-    "ovus", "lemon", "fractal", "polynomial", "light_group", "isosurface_",
+    "blob",
+    "height_field",
+    "isosurface",
+    "julia_fractal",
+    "lathe",
+    "sor",
+    "prism",
+    "text",
+    "parametric",
+    "sphere_sweep",
+    "bicubic_patch",
+    "quadric",
+    "quartic",
+    "poly",
+    "cubic",
+    "ovus",
+    "lemon",
+    "fractal",
+    "polynomial",
+    "light_group",
+    "isosurface_",
 ];
 
 /// Whether `w` begins an object (a shape, a combination, `object`, a light in a union).
@@ -203,12 +237,14 @@ impl Parser {
     /// The whole file's statements.
     pub fn scene(&mut self) -> Result<PovScene, LoadError> {
         let mut s = PovScene::default();
-        while let Some(t) = self.next()? {
+        while let Some(t) = self.next_token()? {
             let Tok::Word(w) = &t.tok else {
                 if t.is_symbol(";") {
                     continue;
                 }
-                return Err(t.loc.error(format!("expected a scene statement, found {}", t.tok)));
+                return Err(t
+                    .loc
+                    .error(format!("expected a scene statement, found {}", t.tok)));
             };
             match &**w {
                 "camera" => s.camera = Some(Rc::new(self.camera_block(&t.loc)?)),
@@ -267,7 +303,9 @@ impl Parser {
                     self.skip_braces()?;
                     return Ok(Value::Normal(loc));
                 }
-                "color_map" | "colour_map" => return Ok(Value::ColorMap(Rc::new(self.color_map()?))),
+                "color_map" | "colour_map" => {
+                    return Ok(Value::ColorMap(Rc::new(self.color_map()?)));
+                }
                 "camera" => return Ok(Value::Camera(Rc::new(self.camera_block(&loc)?))),
                 // A sky sphere is kept as its pigment.
                 "sky_sphere" => return Ok(Value::Pigment(Rc::new(self.sky_sphere()?))),
@@ -307,7 +345,10 @@ impl Parser {
             }
             // An identifier of a non-numeric value stands for itself.
             if let Some(v) = self.lookup(w).cloned()
-                && !matches!(v, Value::Float(_) | Value::Vector(_) | Value::Str(_) | Value::Array(_))
+                && !matches!(
+                    v,
+                    Value::Float(_) | Value::Vector(_) | Value::Str(_) | Value::Array(_)
+                )
             {
                 return Ok(v);
             }
@@ -340,27 +381,32 @@ impl Parser {
         let Some(t) = self.peek()?.cloned() else {
             return Ok(None);
         };
-        let Tok::Word(w) = &t.tok else { return Ok(None) };
+        let Tok::Word(w) = &t.tok else {
+            return Ok(None);
+        };
         let m = match &**w {
             "translate" => {
-                self.next()?;
+                self.next_token()?;
                 DAffine3::from_translation(self.vec3()?)
             }
             "rotate" => {
-                self.next()?;
+                self.next_token()?;
                 rotation(self.vec3()?)
             }
             "scale" => {
-                self.next()?;
+                self.next_token()?;
                 let s = self.vec3()?;
                 if s.x == 0.0 || s.y == 0.0 || s.z == 0.0 {
-                    self.warn(&t.loc, "a scale by 0 is taken as 1 on that axis, as POV-Ray does");
+                    self.warn(
+                        &t.loc,
+                        "a scale by 0 is taken as 1 on that axis, as POV-Ray does",
+                    );
                 }
                 let s = DVec3::select(s.cmpeq(DVec3::ZERO), DVec3::ONE, s);
                 DAffine3::from_scale(s)
             }
             "matrix" => {
-                self.next()?;
+                self.next_token()?;
                 self.expect_symbol("<")?;
                 let mut v = [0.0; 12];
                 for (i, x) in v.iter_mut().enumerate() {
@@ -381,13 +427,15 @@ impl Parser {
                 )
             }
             "transform" => {
-                self.next()?;
+                self.next_token()?;
                 self.transform_body(&t.loc)?
             }
             _ => return Ok(None),
         };
         if m.matrix3.determinant() == 0.0 {
-            return Err(t.loc.error("this transform flattens space (its matrix is singular)"));
+            return Err(t
+                .loc
+                .error("this transform flattens space (its matrix is singular)"));
         }
         Ok(Some(m))
     }
@@ -396,11 +444,16 @@ impl Parser {
     fn transform_body(&mut self, loc: &Loc) -> Result<DAffine3, LoadError> {
         if !self.eat_symbol("{")? {
             return match self.expect_any("a transform")? {
-                Token { tok: Tok::Word(n), loc } => match self.lookup(&n) {
+                Token {
+                    tok: Tok::Word(n),
+                    loc,
+                } => match self.lookup(&n) {
                     Some(Value::Transform(m)) => Ok(*m),
                     _ => Err(loc.error(format!("`{n}` is not a transform"))),
                 },
-                t => Err(t.loc.error(format!("expected a transform, found {}", t.tok))),
+                t => Err(t
+                    .loc
+                    .error(format!("expected a transform, found {}", t.tok))),
             };
         }
         let mut m = DAffine3::IDENTITY;
@@ -416,7 +469,7 @@ impl Parser {
             if let Some(Tok::Word(n)) = self.peek()?.map(|t| t.tok.clone())
                 && let Some(Value::Transform(t)) = self.lookup(&n).cloned()
             {
-                self.next()?;
+                self.next_token()?;
                 m = t * m;
                 continue;
             }
@@ -440,7 +493,7 @@ impl Parser {
             && let Some(Value::Object(o)) = self.lookup(&w).cloned()
             && matches!(&o.shape, Shape::Unread(n) if &**n == "material")
         {
-            self.next()?;
+            self.next_token()?;
             tex = o.texture.as_deref().cloned();
             interior = o.interior.as_deref().cloned();
         }
@@ -478,7 +531,7 @@ impl Parser {
         if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone())
             && let Some(Value::Camera(q)) = self.lookup(&w).cloned()
         {
-            self.next()?;
+            self.next_token()?;
             c = (*q).clone();
         }
         loop {
@@ -486,7 +539,11 @@ impl Parser {
             let w = match &t.tok {
                 Tok::Symbol("}") => return Ok(c),
                 Tok::Word(w) => w.clone(),
-                _ => return Err(t.loc.error(format!("expected a camera's contents, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected a camera's contents, found {}", t.tok)));
+                }
             };
             match &*w {
                 "perspective" => c.orthographic = false,
@@ -505,7 +562,10 @@ impl Parser {
                 "angle" => c.angle = Some(self.float()?),
                 "look_at" => c.look_at = Some(self.vec3()?),
                 "aperture" | "blur_samples" | "focal_point" | "confidence" | "variance" => {
-                    self.warn(&t.loc, format!("the camera's `{w}` (focal blur) is not read by lucent"));
+                    self.warn(
+                        &t.loc,
+                        format!("the camera's `{w}` (focal blur) is not read by lucent"),
+                    );
                     self.expression()?;
                     if w.as_ref() == "blur_samples" && self.eat_symbol(",")? {
                         self.float()?;
@@ -513,7 +573,9 @@ impl Parser {
                 }
                 "fisheye" | "ultra_wide_angle" | "omnimax" | "panoramic" | "cylinder"
                 | "spherical" | "mesh_camera" => {
-                    return Err(t.loc.error(format!("the `{w}` camera is not read by lucent (perspective and orthographic are)")));
+                    return Err(t.loc.error(format!(
+                        "the `{w}` camera is not read by lucent (perspective and orthographic are)"
+                    )));
                 }
                 "normal" => {
                     self.warn(&t.loc, "the camera's `normal` is not read by lucent");
@@ -535,13 +597,17 @@ impl Parser {
         let position = if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone())
             && let Some(Value::Light(q)) = self.lookup(&w).cloned()
         {
-            self.next()?;
+            self.next_token()?;
             return self.light_rest((*q).clone());
         } else {
             self.vec3()?
         };
         self.eat_symbol(",")?;
-        let color = if self.starts_value()? || self.peek()?.is_some_and(|t| matches!(&t.tok, Tok::Word(w) if !super::expr::is_keyword(w))) {
+        let color = if self.starts_value()?
+            || self
+                .peek()?
+                .is_some_and(|t| matches!(&t.tok, Tok::Word(w) if !super::expr::is_keyword(w)))
+        {
             self.color_body()?.v3()
         } else {
             DVec3::ONE
@@ -567,7 +633,11 @@ impl Parser {
             let w = match &t.tok {
                 Tok::Symbol("}") => break,
                 Tok::Word(w) => w.clone(),
-                _ => return Err(t.loc.error(format!("expected a light's contents, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected a light's contents, found {}", t.tok)));
+                }
             };
             match &*w {
                 "color" | "colour" => l.color = self.color_body()?.v3(),
@@ -627,7 +697,11 @@ impl Parser {
                                 a.1 = m.transform_vector3(a.1);
                             }
                         }
-                        None => return Err(t.loc.error(format!("`{w}` is not part of a light_source"))),
+                        None => {
+                            return Err(t
+                                .loc
+                                .error(format!("`{w}` is not part of a light_source")));
+                        }
                     }
                 }
             }
@@ -644,7 +718,9 @@ impl Parser {
     fn sky_sphere(&mut self) -> Result<Pigment, LoadError> {
         self.expect_symbol("{")?;
         let mut pigment = None;
-        if let Some(Value::Pigment(q)) = self.take_named("a sky_sphere", |v| matches!(v, Value::Pigment(_)))? {
+        if let Some(Value::Pigment(q)) =
+            self.take_named("a sky_sphere", |v| matches!(v, Value::Pigment(_)))?
+        {
             pigment = Some((*q).clone());
         }
         loop {
@@ -653,7 +729,10 @@ impl Parser {
                 Tok::Symbol("}") => break,
                 Tok::Word(w) if &**w == "pigment" => {
                     if pigment.is_some() {
-                        self.warn(&t.loc, "a sky_sphere's later pigments are not read by lucent");
+                        self.warn(
+                            &t.loc,
+                            "a sky_sphere's later pigments are not read by lucent",
+                        );
                         self.skip_braces()?;
                     } else {
                         pigment = Some(self.pigment_block()?);
@@ -665,7 +744,9 @@ impl Parser {
                 _ => {
                     self.push_back(t.clone());
                     if self.transform_item()?.is_none() {
-                        return Err(t.loc.error(format!("{} is not part of a sky_sphere", t.tok)));
+                        return Err(t
+                            .loc
+                            .error(format!("{} is not part of a sky_sphere", t.tok)));
                     }
                 }
             }
@@ -681,7 +762,11 @@ impl Parser {
             let w = match &t.tok {
                 Tok::Symbol("}") => return Ok(()),
                 Tok::Word(w) => w.clone(),
-                _ => return Err(t.loc.error(format!("expected a global setting, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected a global setting, found {}", t.tok)));
+                }
             };
             match &*w {
                 "ambient_light" => s.ambient_light = Some(self.color_body()?.v3()),
@@ -696,7 +781,7 @@ impl Parser {
                     self.color_body()?;
                 }
                 "charset" => {
-                    self.next()?;
+                    self.next_token()?;
                 }
                 "max_intersections" | "number_of_waves" | "noise_generator" | "hf_gray_16"
                 | "mm_per_unit" => {
@@ -777,7 +862,10 @@ impl Parser {
                     self.push_back(name.clone());
                     o = self.object()?;
                 } else {
-                    return Err(name.loc.error(format!("expected an object's identifier, found {}", name.tok)));
+                    return Err(name.loc.error(format!(
+                        "expected an object's identifier, found {}",
+                        name.tok
+                    )));
                 }
             }
             "light_source" => {
@@ -815,7 +903,11 @@ impl Parser {
             let w = match &t.tok {
                 Tok::Symbol("}") => return Ok(()),
                 Tok::Word(w) => w.clone(),
-                _ => return Err(t.loc.error(format!("expected an object's modifiers, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected an object's modifiers, found {}", t.tok)));
+                }
             };
             match &*w {
                 "texture" => {
@@ -830,16 +922,19 @@ impl Parser {
                 }
                 "pigment" => {
                     let p = self.pigment_block()?;
-                    Rc::make_mut(o.texture.get_or_insert_with(|| Rc::new(blank_texture()))).pigment = Some(Rc::new(p));
+                    Rc::make_mut(o.texture.get_or_insert_with(|| Rc::new(blank_texture())))
+                        .pigment = Some(Rc::new(p));
                 }
                 "finish" => {
                     let f = self.finish_block()?;
-                    let tex = Rc::make_mut(o.texture.get_or_insert_with(|| Rc::new(blank_texture())));
+                    let tex =
+                        Rc::make_mut(o.texture.get_or_insert_with(|| Rc::new(blank_texture())));
                     tex.finish = tex.finish.overlaid(&f);
                 }
                 "normal" => {
                     self.skip_braces()?;
-                    Rc::make_mut(o.texture.get_or_insert_with(|| Rc::new(blank_texture()))).normal = Some(t.loc.clone());
+                    Rc::make_mut(o.texture.get_or_insert_with(|| Rc::new(blank_texture())))
+                        .normal = Some(t.loc.clone());
                 }
                 "interior" => o.interior = Some(Rc::new(self.interior_block()?)),
                 "material" => {
@@ -878,7 +973,9 @@ impl Parser {
                     self.push_back(t.clone());
                     match self.transform_item()? {
                         Some(m) => apply_transform(o, m),
-                        None => return Err(t.loc.error(format!("`{w}` is not an object modifier"))),
+                        None => {
+                            return Err(t.loc.error(format!("`{w}` is not an object modifier")));
+                        }
                     }
                 }
             }

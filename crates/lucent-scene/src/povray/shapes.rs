@@ -70,7 +70,11 @@ impl Parser {
                 let n = self.vec3()?;
                 self.eat_symbol(",")?;
                 let r = self.float()?;
-                let hole = if self.eat_symbol(",")? { self.float()? } else { 0.0 };
+                let hole = if self.eat_symbol(",")? {
+                    self.float()?
+                } else {
+                    0.0
+                };
                 Shape::Disc(c, n, r, hole)
             }
             "superellipsoid" => {
@@ -146,7 +150,11 @@ impl Parser {
         for _ in 0..n as usize {
             self.eat_symbol(",")?;
             let v = self.vector(2)?;
-            pts.push(if v.n == 2 { DVec3::new(v.c[0], v.c[1], 0.0) } else { v.v3() });
+            pts.push(if v.n == 2 {
+                DVec3::new(v.c[0], v.c[1], 0.0)
+            } else {
+                v.v3()
+            });
         }
         let mut mesh = Mesh::default();
         // Loops: each ends where it returns to its first point.
@@ -158,7 +166,10 @@ impl Parser {
                 let ring = &pts[start..i];
                 if ring.len() >= 3 {
                     if !warned && start > 0 {
-                        self.warn(loc, "a polygon of several loops is read as their fans (holes are not cut)");
+                        self.warn(
+                            loc,
+                            "a polygon of several loops is read as their fans (holes are not cut)",
+                        );
                         warned = true;
                     }
                     fan(ring, &mut mesh.points);
@@ -182,18 +193,17 @@ impl Parser {
         let mut textures = Vec::new();
         let mut any_smooth = false;
         let mut any_texture = false;
-        loop {
-            let Some(t) = self.peek()?.cloned() else { break };
+        while let Some(t) = self.peek()?.cloned() {
             let smooth = t.is_word("smooth_triangle");
             if !(smooth || t.is_word("triangle")) {
                 if t.is_word("inside_vector") {
-                    self.next()?;
+                    self.next_token()?;
                     self.vec3()?;
                     continue;
                 }
                 break;
             }
-            self.next()?;
+            self.next_token()?;
             self.expect_symbol("{")?;
             for i in 0..3 {
                 if i > 0 {
@@ -231,7 +241,9 @@ impl Parser {
                         self.vector(2)?;
                     }
                 } else {
-                    return Err(t.loc.error(format!("{} is not part of a mesh's triangle", t.tok)));
+                    return Err(t
+                        .loc
+                        .error(format!("{} is not part of a mesh's triangle", t.tok)));
                 }
             }
             textures.push(tex);
@@ -256,13 +268,12 @@ impl Parser {
         let mut texture_list: Vec<Rc<Texture>> = Vec::new();
         let mut faces: Vec<([usize; 3], Vec<usize>)> = Vec::new();
         let mut normal_indices: Vec<[usize; 3]> = Vec::new();
-        loop {
-            let Some(t) = self.peek()?.cloned() else { break };
+        while let Some(t) = self.peek()?.cloned() {
             let Tok::Word(w) = &t.tok else { break };
             let w = w.clone();
             match &*w {
                 "vertex_vectors" | "normal_vectors" | "uv_vectors" => {
-                    self.next()?;
+                    self.next_token()?;
                     self.expect_symbol("{")?;
                     let n = self.count(&t.loc)?;
                     let mut list = Vec::with_capacity(n);
@@ -279,7 +290,7 @@ impl Parser {
                     }
                 }
                 "texture_list" => {
-                    self.next()?;
+                    self.next_token()?;
                     self.expect_symbol("{")?;
                     let n = self.count(&t.loc)?;
                     for _ in 0..n {
@@ -292,7 +303,7 @@ impl Parser {
                     self.expect_symbol("}")?;
                 }
                 "face_indices" | "normal_indices" | "uv_indices" => {
-                    self.next()?;
+                    self.next_token()?;
                     self.expect_symbol("{")?;
                     let n = self.count(&t.loc)?;
                     for _ in 0..n {
@@ -307,8 +318,11 @@ impl Parser {
                         if w.as_ref() == "face_indices" && !texture_list.is_empty() {
                             while self.peek_plain().is_some_and(|t| t.is_symbol(",")) {
                                 // `, i` after the face: peek past the comma for a number.
-                                self.next()?;
-                                if self.peek()?.is_some_and(|t| matches!(t.tok, Tok::Number(_)) || matches!(&t.tok, Tok::Word(_))) {
+                                self.next_token()?;
+                                if self.peek()?.is_some_and(|t| {
+                                    matches!(t.tok, Tok::Number(_))
+                                        || matches!(&t.tok, Tok::Word(_))
+                                }) {
                                     texs.push(self.float()? as usize);
                                 } else {
                                     break;
@@ -328,7 +342,7 @@ impl Parser {
                     self.expect_symbol("}")?;
                 }
                 "inside_vector" => {
-                    self.next()?;
+                    self.next_token()?;
                     self.vec3()?;
                 }
                 _ => break,
@@ -337,7 +351,10 @@ impl Parser {
         let mut mesh = Mesh::default();
         let corner = |i: usize, list: &[DVec3], what: &str| {
             list.get(i).copied().ok_or_else(|| {
-                loc.error(format!("a mesh2 {what} index {i} is outside its {} vectors", list.len()))
+                loc.error(format!(
+                    "a mesh2 {what} index {i} is outside its {} vectors",
+                    list.len()
+                ))
             })
         };
         let smooth = !normal_vectors.is_empty();
@@ -356,7 +373,10 @@ impl Parser {
             if !texture_list.is_empty() {
                 let tex = match texs.first() {
                     Some(&i) => Some(texture_list.get(i).cloned().ok_or_else(|| {
-                        loc.error(format!("a mesh2 texture index {i} is outside its {} textures", texture_list.len()))
+                        loc.error(format!(
+                            "a mesh2 texture index {i} is outside its {} textures",
+                            texture_list.len()
+                        ))
                     })?),
                     None => None,
                 };

@@ -85,7 +85,11 @@ impl Pigment {
             Pattern::Hexagon(p) => mean(&[p[0].average(), p[1].average(), p[2].average()]),
             Pattern::Mapped(_, _, map) => {
                 let cs: Vec<Vect> = map.iter().map(|e| e.1).collect();
-                if cs.is_empty() { Vect::splat(0.0, 5) } else { mean(&cs) }
+                if cs.is_empty() {
+                    Vect::splat(0.0, 5)
+                } else {
+                    mean(&cs)
+                }
             }
         }
     }
@@ -174,7 +178,9 @@ impl Parser {
         // An identifier first: the pigment (or colour) it names.
         if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone()) {
             match self.lookup(&w).cloned() {
-                Some(Value::Vector(_) | Value::Float(_)) => p.pattern = Pattern::Solid(self.color_body()?),
+                Some(Value::Vector(_) | Value::Float(_)) => {
+                    p.pattern = Pattern::Solid(self.color_body()?)
+                }
                 _ => {
                     if let Some(Value::Pigment(q)) =
                         self.take_named("a pigment", |v| matches!(v, Value::Pigment(_)))?
@@ -190,9 +196,15 @@ impl Parser {
                 Tok::Symbol("}") => return Ok(p),
                 Tok::Word(w) => w.clone(),
                 Tok::Symbol("<") | Tok::Number(_) => {
-                    return Err(t.loc.error("a pigment's colour needs `color` or `rgb` before it"));
+                    return Err(t
+                        .loc
+                        .error("a pigment's colour needs `color` or `rgb` before it"));
                 }
-                _ => return Err(t.loc.error(format!("expected a pigment's contents, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected a pigment's contents, found {}", t.tok)));
+                }
             };
             match &*w {
                 "color" | "colour" => p.pattern = Pattern::Solid(self.color_body()?),
@@ -232,8 +244,8 @@ impl Parser {
                         _ => p.pattern = Pattern::Mapped("gradient".into(), DVec3::X, map),
                     }
                 }
-                "image_map" | "pigment_map" | "uv_mapping" | "function" | "object"
-                | "average" | "density_file" | "slope" | "aoi" | "pavement" | "tiling" => {
+                "image_map" | "pigment_map" | "uv_mapping" | "function" | "object" | "average"
+                | "density_file" | "slope" | "aoi" | "pavement" | "tiling" => {
                     p.pattern = Pattern::Mapped(w.clone(), DVec3::ZERO, Rc::new(default_map()));
                     if self.peek()?.is_some_and(|t| t.is_symbol("{")) {
                         self.skip_braces()?;
@@ -249,7 +261,11 @@ impl Parser {
                     p.shaping.wave = Some((w.clone(), 1.0));
                 }
                 "poly_wave" => {
-                    let e = if self.starts_value()? { self.float()? } else { 1.0 };
+                    let e = if self.starts_value()? {
+                        self.float()?
+                    } else {
+                        1.0
+                    };
                     p.shaping.wave = Some((w.clone(), e));
                 }
                 "warp" => self.skip_braces()?,
@@ -270,7 +286,11 @@ impl Parser {
 
     /// The entries of `checker` or `hexagon`: colours or pigments, `n` of them at most
     /// (defaults: the grey values given).
-    fn pattern_entries<const N: usize>(&mut self, loc: &Loc, grays: [f64; N]) -> Result<[Pigment; N], LoadError> {
+    fn pattern_entries<const N: usize>(
+        &mut self,
+        loc: &Loc,
+        grays: [f64; N],
+    ) -> Result<[Pigment; N], LoadError> {
         let mut out: [Pigment; N] = std::array::from_fn(|i| {
             let mut c = Vect::splat(grays[i], 5);
             c.c[3] = 0.0;
@@ -278,17 +298,23 @@ impl Parser {
             Pigment::solid(c, loc.clone())
         });
         for slot in out.iter_mut() {
-            let Some(t) = self.peek()?.cloned() else { break };
+            let Some(t) = self.peek()?.cloned() else {
+                break;
+            };
             match &t.tok {
                 Tok::Word(w) if &**w == "pigment" => {
-                    self.next()?;
+                    self.next_token()?;
                     *slot = self.pigment_block()?;
                 }
                 Tok::Word(w) if matches!(&**w, "color" | "colour") => {
-                    self.next()?;
+                    self.next_token()?;
                     *slot = Pigment::solid(self.color_body()?, t.loc.clone());
                 }
-                Tok::Word(w) if w.starts_with("rgb") || w.starts_with("srgb") || matches!(self.lookup(w), Some(Value::Vector(_))) => {
+                Tok::Word(w)
+                    if w.starts_with("rgb")
+                        || w.starts_with("srgb")
+                        || matches!(self.lookup(w), Some(Value::Vector(_))) =>
+                {
                     *slot = Pigment::solid(self.color_body()?, t.loc.clone());
                 }
                 _ => break,
@@ -304,7 +330,7 @@ impl Parser {
         if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone())
             && let Some(Value::ColorMap(m)) = self.lookup(&w).cloned()
         {
-            self.next()?;
+            self.next_token()?;
             self.expect_symbol("}")?;
             return Ok((*m).clone());
         }
@@ -341,7 +367,9 @@ impl Parser {
     pub fn finish_block(&mut self) -> Result<Finish, LoadError> {
         self.expect_symbol("{")?;
         let mut f = Finish::default();
-        if let Some(Value::Finish(q)) = self.take_named("a finish", |v| matches!(v, Value::Finish(_)))? {
+        if let Some(Value::Finish(q)) =
+            self.take_named("a finish", |v| matches!(v, Value::Finish(_)))?
+        {
             f = (*q).clone();
         }
         loop {
@@ -349,7 +377,11 @@ impl Parser {
             let w = match &t.tok {
                 Tok::Symbol("}") => return Ok(f),
                 Tok::Word(w) => w.clone(),
-                _ => return Err(t.loc.error(format!("expected a finish's contents, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected a finish's contents, found {}", t.tok)));
+                }
             };
             match &*w {
                 "ambient" => f.ambient = Some(self.color_body()?.v3()),
@@ -374,7 +406,11 @@ impl Parser {
                 }
                 "phong_size" => f.phong_size = Some(self.float()?),
                 "metallic" => {
-                    let v = if self.starts_value()? { self.float()? } else { 1.0 };
+                    let v = if self.starts_value()? {
+                        self.float()?
+                    } else {
+                        1.0
+                    };
                     f.metallic = Some(v);
                 }
                 "conserve_energy" => f.conserve_energy = Some(true),
@@ -391,24 +427,38 @@ impl Parser {
                             match &t.tok {
                                 Tok::Symbol("}") => break,
                                 Tok::Word(k) if &**k == "metallic" => {
-                                    let v = if self.starts_value()? { self.float()? } else { 1.0 };
+                                    let v = if self.starts_value()? {
+                                        self.float()?
+                                    } else {
+                                        1.0
+                                    };
                                     f.metallic = Some(v);
                                 }
                                 Tok::Word(k) if matches!(&**k, "falloff" | "exponent") => {
-                                    f.unread.push((format!("reflection's `{k}`"), t.loc.clone()));
+                                    f.unread
+                                        .push((format!("reflection's `{k}`"), t.loc.clone()));
                                     self.float()?;
                                 }
                                 Tok::Word(k) if &**k == "fresnel" => {
-                                    f.unread.push(("reflection's `fresnel`".into(), t.loc.clone()));
+                                    f.unread
+                                        .push(("reflection's `fresnel`".into(), t.loc.clone()));
                                     if self.starts_value()? {
                                         self.float()?;
                                     }
                                 }
-                                _ => return Err(t.loc.error(format!("{} is not part of a reflection", t.tok))),
+                                _ => {
+                                    return Err(t
+                                        .loc
+                                        .error(format!("{} is not part of a reflection", t.tok)));
+                                }
                             }
                         }
                         if lo != hi {
-                            f.unread.push(("a reflection varying with angle (its largest value is used)".into(), t.loc.clone()));
+                            f.unread.push((
+                                "a reflection varying with angle (its largest value is used)"
+                                    .into(),
+                                t.loc.clone(),
+                            ));
                         }
                         f.reflection = Some(lo.max(hi));
                     } else {
@@ -416,7 +466,8 @@ impl Parser {
                     }
                 }
                 "reflection_exponent" => {
-                    f.unread.push(("`reflection_exponent`".into(), t.loc.clone()));
+                    f.unread
+                        .push(("`reflection_exponent`".into(), t.loc.clone()));
                     self.float()?;
                 }
                 "crand" | "irid_wavelength" => {
@@ -439,7 +490,7 @@ impl Parser {
         if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone())
             && let Some(Value::Interior(q)) = self.lookup(&w).cloned()
         {
-            self.next()?;
+            self.next_token()?;
             i = (*q).clone();
         }
         loop {
@@ -447,7 +498,11 @@ impl Parser {
             let w = match &t.tok {
                 Tok::Symbol("}") => return Ok(i),
                 Tok::Word(w) => w.clone(),
-                _ => return Err(t.loc.error(format!("expected an interior's contents, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected an interior's contents, found {}", t.tok)));
+                }
             };
             match &*w {
                 "ior" => i.ior = Some(self.float()?),
@@ -457,7 +512,8 @@ impl Parser {
                     self.float()?;
                 }
                 "fade_color" | "fade_colour" => {
-                    i.unread.push(("interior's `fade_color`".into(), t.loc.clone()));
+                    i.unread
+                        .push(("interior's `fade_color`".into(), t.loc.clone()));
                     self.color_body()?;
                 }
                 "media" => {
@@ -476,7 +532,9 @@ impl Parser {
             transform: DAffine3::IDENTITY,
             ..Texture::default()
         };
-        if let Some(Value::Texture(q)) = self.take_named("a texture", |v| matches!(v, Value::Texture(_)))? {
+        if let Some(Value::Texture(q)) =
+            self.take_named("a texture", |v| matches!(v, Value::Texture(_)))?
+        {
             tex = (*q).clone();
         }
         loop {
@@ -484,7 +542,11 @@ impl Parser {
             let w = match &t.tok {
                 Tok::Symbol("}") => return Ok(tex),
                 Tok::Word(w) => w.clone(),
-                _ => return Err(t.loc.error(format!("expected a texture's contents, found {}", t.tok))),
+                _ => {
+                    return Err(t
+                        .loc
+                        .error(format!("expected a texture's contents, found {}", t.tok)));
+                }
             };
             match &*w {
                 "pigment" => tex.pigment = Some(Rc::new(self.pigment_block()?)),
@@ -496,9 +558,9 @@ impl Parser {
                     self.skip_braces()?;
                     tex.normal = Some(t.loc.clone());
                 }
-                "material_map" | "texture_map" | "image_map" | "uv_mapping" | "checker" | "hexagon"
-                | "gradient" | "bozo" | "marble" | "wood" | "granite" | "agate" | "spotted"
-                | "brick" | "leopard" | "onion" | "radial" => {
+                "material_map" | "texture_map" | "image_map" | "uv_mapping" | "checker"
+                | "hexagon" | "gradient" | "bozo" | "marble" | "wood" | "granite" | "agate"
+                | "spotted" | "brick" | "leopard" | "onion" | "radial" => {
                     self.warn(&t.loc, format!("a texture pattern (`{w}`) is not read by lucent; its first texture stands in"));
                     self.skip_texture_pattern(&mut tex)?;
                 }
@@ -520,32 +582,37 @@ impl Parser {
     /// Reads a texture pattern's arguments and map, keeping the first texture.
     fn skip_texture_pattern(&mut self, tex: &mut Texture) -> Result<(), LoadError> {
         loop {
-            let Some(t) = self.peek()?.cloned() else { return Ok(()) };
+            let Some(t) = self.peek()?.cloned() else {
+                return Ok(());
+            };
             match &t.tok {
                 Tok::Symbol("}") => return Ok(()),
                 Tok::Symbol("{") => self.skip_braces()?,
                 Tok::Word(w) if &**w == "texture" => {
-                    self.next()?;
+                    self.next_token()?;
                     let inner = self.texture_block()?;
                     if tex.pigment.is_none() {
                         *tex = inner;
                     }
                 }
                 Tok::Word(w) if matches!(&**w, "texture_map" | "material_map") => {
-                    self.next()?;
+                    self.next_token()?;
                     self.expect_symbol("{")?;
                     while !self.eat_symbol("}")? {
                         self.expect_symbol("[")?;
                         self.float()?;
                         self.eat_symbol(",")?;
                         if self.peek()?.is_some_and(|t| t.is_word("texture")) {
-                            self.next()?;
+                            self.next_token()?;
                         }
                         let inner = if self.peek()?.is_some_and(|t| t.is_symbol("{")) {
                             self.texture_block()?
                         } else {
-                            match self.next()? {
-                                Some(Token { tok: Tok::Word(n), loc }) => match self.lookup(&n) {
+                            match self.next_token()? {
+                                Some(Token {
+                                    tok: Tok::Word(n),
+                                    loc,
+                                }) => match self.lookup(&n) {
                                     Some(Value::Texture(t)) => (**t).clone(),
                                     _ => return Err(loc.error(format!("`{n}` is not a texture"))),
                                 },
@@ -559,7 +626,7 @@ impl Parser {
                     }
                 }
                 _ => {
-                    self.next()?;
+                    self.next_token()?;
                 }
             }
         }
@@ -570,13 +637,25 @@ impl Parser {
         Ok(match self.peek()?.map(|t| t.tok.clone()) {
             Some(Tok::Number(_)) => true,
             Some(Tok::Symbol(s)) => matches!(s, "<" | "(" | "-" | "+"),
-            Some(Tok::Word(w)) => matches!(self.lookup(&w), Some(Value::Float(_) | Value::Vector(_)))
-                || w.starts_with("rgb")
-                || matches!(
-                    &*w,
-                    "color" | "colour" | "pi" | "x" | "y" | "z" | "on" | "off" | "true" | "false"
-                        | "yes" | "no"
-                ),
+            Some(Tok::Word(w)) => {
+                matches!(self.lookup(&w), Some(Value::Float(_) | Value::Vector(_)))
+                    || w.starts_with("rgb")
+                    || matches!(
+                        &*w,
+                        "color"
+                            | "colour"
+                            | "pi"
+                            | "x"
+                            | "y"
+                            | "z"
+                            | "on"
+                            | "off"
+                            | "true"
+                            | "false"
+                            | "yes"
+                            | "no"
+                    )
+            }
             _ => false,
         })
     }
@@ -598,7 +677,8 @@ impl Parser {
 
     /// Skips a `brick` pattern's colour entries.
     fn skip_entries(&mut self) -> Result<(), LoadError> {
-        self.pattern_entries::<2>(&self.loc(), [0.0, 1.0]).map(|_| ())
+        self.pattern_entries::<2>(&self.loc(), [0.0, 1.0])
+            .map(|_| ())
     }
 }
 
@@ -606,5 +686,14 @@ use super::lexer::Token;
 
 /// POV-Ray's map when a pattern has none: black to white.
 fn default_map() -> ColorMap {
-    vec![(0.0, Vect::splat(0.0, 5)), (1.0, Vect { c: [1.0, 1.0, 1.0, 0.0, 0.0], n: 5 })]
+    vec![
+        (0.0, Vect::splat(0.0, 5)),
+        (
+            1.0,
+            Vect {
+                c: [1.0, 1.0, 1.0, 0.0, 0.0],
+                n: 5,
+            },
+        ),
+    ]
 }

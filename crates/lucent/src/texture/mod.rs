@@ -17,8 +17,8 @@ pub mod pattern;
 pub mod transform;
 
 pub use checker::{Checker, UvChecker};
-pub use pattern::{Pattern, PatternKind, Turbulence, Wave};
 pub use image::{Filter, ImageTexture, Texel, Wrap};
+pub use pattern::{Pattern, PatternKind, Turbulence, Wave};
 pub use transform::UvTransform;
 
 use crate::Rgb;
@@ -257,9 +257,10 @@ impl Texture {
     #[inline(always)]
     pub fn uses_uv(&self) -> bool {
         match self {
-            Texture::Solid(_) | Texture::Checker(_) | Texture::Pattern(_) | Texture::VertexColor => {
-                false
-            }
+            Texture::Solid(_)
+            | Texture::Checker(_)
+            | Texture::Pattern(_)
+            | Texture::VertexColor => false,
             Texture::UvChecker(_) | Texture::Image(_) => true,
             _ => self.any_child_uses_uv(),
         }

@@ -133,7 +133,10 @@ impl Pattern {
     }
 
     fn entry(&self, i: usize) -> Rgb {
-        self.map.get(i).or(self.map.last()).map_or(Rgb::BLACK, |e| e.1)
+        self.map
+            .get(i)
+            .or(self.map.last())
+            .map_or(Rgb::BLACK, |e| e.1)
     }
 
     /// The pattern's raw value at `p` (its own space).
@@ -337,9 +340,16 @@ mod tests {
         assert_eq!(c.eval(Vec3::new(0.5, -1e-7, 0.5)), Rgb::BLACK);
         let h = pattern(PatternKind::Hexagon, colours);
         assert_eq!(h.eval(Vec3::ZERO), Rgb::BLACK);
-        let across = [Vec3::new(1.5, 0.0, 0.866), Vec3::new(0.0, 0.0, 1.732), Vec3::new(1.5, 0.0, -0.866)];
+        let across = [
+            Vec3::new(1.5, 0.0, 0.866),
+            Vec3::new(0.0, 0.0, 1.732),
+            Vec3::new(1.5, 0.0, -0.866),
+        ];
         let seen: Vec<Rgb> = across.iter().map(|p| h.eval(*p)).collect();
-        assert!(seen.iter().all(|c| *c != Rgb::BLACK), "neighbours differ from the centre: {seen:?}");
+        assert!(
+            seen.iter().all(|c| *c != Rgb::BLACK),
+            "neighbours differ from the centre: {seen:?}"
+        );
     }
 
     #[test]
