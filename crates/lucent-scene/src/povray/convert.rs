@@ -376,8 +376,9 @@ impl Convert<'_> {
                 "a `normal` (bump pattern) is not read by lucent: the surface is smooth",
             );
         }
-        let ior = o.interior.as_ref().and_then(|i| i.ior).unwrap_or(1.0);
-        if let Some(i) = &o.interior {
+        let interior = o.interior.as_ref();
+        let ior = interior.and_then(|i| i.ior).unwrap_or(1.0);
+        if let Some(i) = interior {
             for (what, loc) in &i.unread {
                 let (what, loc) = (what.clone(), loc.clone());
                 self.warn(&loc, format!("{what} is not read by lucent"));
@@ -790,6 +791,7 @@ impl Convert<'_> {
                     // be one, and a union keeps all surfaces anyway.
                     let mut out = Vec::new();
                     for c in children {
+                        let c = &with_interior(c, o);
                         if let Some(mut parts) = self.object(c, tex, &m, true)? {
                             if o.inverse {
                                 self.warn(&o.loc, "an inverted union is drawn as its parts");
@@ -801,6 +803,7 @@ impl Convert<'_> {
                 }
                 let mut kids = Vec::new();
                 for c in children {
+                    let c = &with_interior(c, o);
                     if let Some(parts) = self.object(c, tex, &DAffine3::IDENTITY, false)? {
                         kids.extend(parts.into_iter().map(span));
                     }
@@ -850,6 +853,15 @@ impl Convert<'_> {
         }
         Ok(Some(vec![d]))
     }
+}
+
+/// `child` wearing its combination's interior when it has none of its own.
+fn with_interior(child: &Object, parent: &Object) -> Object {
+    let mut c = child.clone();
+    if c.interior.is_none() {
+        c.interior = parent.interior.clone();
+    }
+    c
 }
 
 /// Gives `d` and its children without a material the name `m`.

@@ -264,7 +264,10 @@ impl Parser {
                 }
                 w if SHAPES.contains(&w) || UNREAD_SHAPES.contains(&w) => {
                     self.push_back(t.clone());
-                    let o = self.object()?;
+                    let mut o = self.object()?;
+                    if o.texture.is_none() {
+                        o.texture = Some(Rc::new(self.default_texture()));
+                    }
                     match o.shape {
                         Shape::Light(l) => s.lights.push(Rc::new(placed_light(&l, &o.transform))),
                         _ => s.objects.push(o),
@@ -294,10 +297,16 @@ impl Parser {
                         self.texture_block()?;
                         tex.layered.get_or_insert(layer.loc);
                     }
+                    tex.finish = self.defaults.finish.overlaid(&tex.finish).resolved();
                     return Ok(Value::Texture(Rc::new(tex)));
                 }
                 "pigment" => return Ok(Value::Pigment(Rc::new(self.pigment_block()?))),
-                "finish" => return Ok(Value::Finish(Rc::new(self.finish_block()?))),
+                // A declared finish or texture takes the defaults of its time (`#default`
+                // later does not change it), as POV-Ray's do.
+                "finish" => {
+                    let f = self.finish_block()?;
+                    return Ok(Value::Finish(Rc::new(self.defaults.finish.overlaid(&f).resolved())));
+                }
                 "interior" => return Ok(Value::Interior(Rc::new(self.interior_block()?))),
                 "normal" => {
                     self.skip_braces()?;
@@ -875,7 +884,24 @@ impl Parser {
             _ => o.shape = self.shape(&w, &loc)?,
         }
         self.modifiers(&mut o)?;
+        // The texture written here takes the defaults in force now.
+        if let Some(t) = &mut o.texture {
+            let t = Rc::make_mut(t);
+            t.finish = self.defaults.finish.overlaid(&t.finish).resolved();
+            if t.pigment.is_none() {
+                t.pigment = self.defaults.pigment.clone();
+            }
+        }
         Ok(o)
+    }
+
+    /// The texture an object without one wears: `#default`'s now.
+    pub fn default_texture(&self) -> Texture {
+        Texture {
+            pigment: self.defaults.pigment.clone(),
+            finish: self.defaults.finish.resolved(),
+            ..blank_texture()
+        }
     }
 
     /// A light inside a combination: `light_source { … }` with its `{` read.

@@ -126,6 +126,24 @@ pub struct Finish {
 }
 
 impl Finish {
+    /// Every term set: what is not, POV-Ray's default.
+    pub fn resolved(&self) -> Finish {
+        Finish {
+            ambient: Some(self.ambient.unwrap_or(DVec3::splat(0.1))),
+            emission: Some(self.emission.unwrap_or(DVec3::ZERO)),
+            diffuse: Some(self.diffuse.unwrap_or(0.6)),
+            brilliance: Some(self.brilliance.unwrap_or(1.0)),
+            specular: Some(self.specular.unwrap_or(0.0)),
+            roughness: Some(self.roughness.unwrap_or(0.05)),
+            phong: Some(self.phong.unwrap_or(0.0)),
+            phong_size: Some(self.phong_size.unwrap_or(40.0)),
+            reflection: Some(self.reflection.unwrap_or(DVec3::ZERO)),
+            metallic: Some(self.metallic.unwrap_or(0.0)),
+            conserve_energy: Some(self.conserve_energy.unwrap_or(false)),
+            unread: self.unread.clone(),
+        }
+    }
+
     /// `self` with what `over` sets taken from it.
     pub fn overlaid(&self, over: &Finish) -> Finish {
         Finish {
