@@ -38,7 +38,10 @@ pub fn run(args: &ConvertArgs) -> anyhow::Result<ExitCode> {
     let text = file.to_toml(&loaded)?;
     // What TOML cannot say (a POV-Ray scene's negative colours) is refused here, not written
     // as a file lucent would then refuse to read.
-    let base = args.output.parent().map_or_else(std::path::PathBuf::new, std::path::Path::to_path_buf);
+    let base = args
+        .output
+        .parent()
+        .map_or_else(std::path::PathBuf::new, std::path::Path::to_path_buf);
     if let Err(e) = SceneFile::parse(args.output.clone(), base, text.clone()) {
         bail!(
             "{}: the scene has no TOML form lucent can read back: {}",

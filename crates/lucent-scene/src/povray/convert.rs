@@ -73,7 +73,7 @@ pub fn convert(
     };
     let camera = match &scene.camera {
         Some(c) => camera(c, size, cx.warnings)?,
-        None => camera(&default_camera(file), size, cx.warnings)?,
+        None => camera(&Camera::default_at(file), size, cx.warnings)?,
     };
     let mut objects = Vec::new();
     let mut lights: Vec<Spanned<LightDesc>> = Vec::new();
@@ -133,23 +133,6 @@ fn display_gamma(scene: &PovScene, version: Option<f64>) -> Option<f64> {
         (Some(g), _) => Some(g),
         (None, Some(v)) if v >= 3.7 - 1e-9 => Some(1.0),
         _ => None,
-    }
-}
-
-/// POV-Ray's camera when a file has none.
-fn default_camera(file: &Loc) -> Camera {
-    Camera {
-        orthographic: false,
-        location: DVec3::ZERO,
-        direction: DVec3::Z,
-        right: DVec3::new(1.33, 0.0, 0.0),
-        up: DVec3::Y,
-        sky: DVec3::Y,
-        angle: None,
-        look_at: None,
-        sized: false,
-        transform: DAffine3::IDENTITY,
-        loc: file.clone(),
     }
 }
 

@@ -347,30 +347,15 @@ impl Parser {
             Some(Value::Float(v)) => Ok(Scalar::F(v)),
             Some(Value::Vector(v)) => Ok(Scalar::V(v)),
             Some(Value::Str(s)) => Ok(Scalar::S(s)),
-            Some(Value::Array(a)) => {
-                let mut index = Vec::new();
-                while self.eat_symbol("[")? {
-                    index.push(self.float()?);
-                    self.expect_symbol("]")?;
-                }
-                let a = a.borrow();
-                let at = a.flat_index(&index).ok_or_else(|| {
-                    loc.error(format!(
-                        "index {index:?} is outside `{w}` of size {:?}",
-                        a.dims
-                    ))
-                })?;
-                match &a.items[at] {
-                    Some(Value::Float(v)) => Ok(Scalar::F(*v)),
-                    Some(Value::Vector(v)) => Ok(Scalar::V(*v)),
-                    Some(Value::Str(s)) => Ok(Scalar::S(s.clone())),
-                    Some(other) => Err(loc.error(format!(
-                        "`{w}{index:?}` is {}, not a number or vector",
-                        other.kind()
-                    ))),
-                    None => Err(loc.error(format!("`{w}{index:?}` is not set"))),
-                }
-            }
+            Some(Value::Array(a)) => match self.element(&w, &a, loc)? {
+                Value::Float(v) => Ok(Scalar::F(v)),
+                Value::Vector(v) => Ok(Scalar::V(v)),
+                Value::Str(s) => Ok(Scalar::S(s)),
+                other => Err(loc.error(format!(
+                    "an element of `{w}` is {}, not a number or vector",
+                    other.kind()
+                ))),
+            },
             Some(other) => Err(loc.error(format!(
                 "`{w}` is {}, where a number, vector or string is wanted",
                 other.kind()

@@ -6,38 +6,7 @@ use std::fmt;
 use std::path::Path;
 use std::rc::Rc;
 
-/// Where a token is: a file and a 1-based line and column.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Loc {
-    /// The file, as it was opened.
-    pub file: Rc<Path>,
-    /// 1-based line.
-    pub line: usize,
-    /// 1-based column, in characters.
-    pub column: usize,
-}
-
-impl Loc {
-    /// A load error at this place.
-    pub fn error(&self, message: impl Into<String>) -> LoadError {
-        LoadError {
-            file: self.file.to_path_buf(),
-            position: Some((self.line, self.column)),
-            message: message.into(),
-        }
-    }
-
-    /// A warning at this place, as one line naming the file.
-    pub fn warning(&self, message: impl fmt::Display) -> String {
-        format!("{self}: {message}")
-    }
-}
-
-impl fmt::Display for Loc {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
-    }
-}
+pub use crate::mitsuba::xml::Loc;
 
 /// What a token is.
 #[derive(Clone, Debug, PartialEq)]

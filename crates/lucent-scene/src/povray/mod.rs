@@ -79,7 +79,16 @@ pub fn import_povray(
     let mut p = Parser::open(path, library_path(), options, size, std::mem::take(inputs))?;
     let scene = p.scene();
     *inputs = std::mem::take(&mut p.inputs);
-    let scene = scene?;
+    described(p, scene?, path, size)
+}
+
+/// The description of what `p` read, `scene`, from the file `path`.
+fn described(
+    mut p: Parser,
+    scene: scene::PovScene,
+    path: &Path,
+    size: (u32, u32),
+) -> Result<Imported, LoadError> {
     let file = lexer::Loc {
         file: std::rc::Rc::from(path),
         line: 1,
@@ -113,24 +122,5 @@ pub fn import_povray_text(
     p.image_size = size;
     p.library = library_path();
     let scene = p.scene()?;
-    let file = lexer::Loc {
-        file: std::rc::Rc::from(label),
-        line: 1,
-        column: 1,
-    };
-    let mut warnings = std::mem::take(&mut p.warnings);
-    let desc = convert::convert(
-        &scene,
-        p.main_version,
-        &p.defaults,
-        size,
-        &mut warnings,
-        &file,
-    )?;
-    Ok(Imported {
-        desc,
-        camera_given: true,
-        warnings,
-        lit_as_given: true,
-    })
+    described(p, scene, label, size)
 }

@@ -327,6 +327,17 @@ impl Parser {
         Ok(false)
     }
 
+    /// The next word of a `{ … }` block and its token, `None` at the block's `}`; anything
+    /// else is an error saying `what` was expected.
+    pub fn block_word(&mut self, what: &str) -> Result<Option<(Rc<str>, Token)>, LoadError> {
+        let t = self.expect_any("`}`")?;
+        match &t.tok {
+            Tok::Symbol("}") => Ok(None),
+            Tok::Word(w) => Ok(Some((w.clone(), t))),
+            _ => Err(t.loc.error(format!("expected {what}, found {}", t.tok))),
+        }
+    }
+
     /// The symbol `s`, or an error saying it was expected.
     pub fn expect_symbol(&mut self, s: &str) -> Result<(), LoadError> {
         let t = self.expect_any(&format!("`{s}`"))?;
@@ -355,23 +366,11 @@ impl Parser {
         let value = match self.lookup(&w).cloned() {
             Some(Value::Array(a)) => {
                 self.next_token()?;
-                let mut index = Vec::new();
-                while self.eat_symbol("[")? {
-                    index.push(self.float()?);
-                    self.expect_symbol("]")?;
-                }
-                let a = a.borrow();
-                let at = a.flat_index(&index).ok_or_else(|| {
-                    loc.error(format!(
-                        "index {index:?} is outside `{w}` of size {:?}",
-                        a.dims
-                    ))
-                })?;
-                let v = a.items[at]
-                    .clone()
-                    .ok_or_else(|| loc.error(format!("`{w}{index:?}` is not set")))?;
+                let v = self.element(&w, &a, &loc)?;
                 if !accept(&v) {
-                    return Err(loc.error(format!("`{w}{index:?}` is {}, not {what}", v.kind())));
+                    return Err(
+                        loc.error(format!("an element of `{w}` is {}, not {what}", v.kind()))
+                    );
                 }
                 return Ok(Some(v));
             }
@@ -380,6 +379,36 @@ impl Parser {
         };
         self.next_token()?;
         Ok(Some(value))
+    }
+
+    /// The indices `[i][j]…` that follow an array's name (none: an empty list).
+    pub fn indices(&mut self) -> Result<Vec<f64>, LoadError> {
+        let mut index = Vec::new();
+        while self.eat_symbol("[")? {
+            index.push(self.float()?);
+            self.expect_symbol("]")?;
+        }
+        Ok(index)
+    }
+
+    /// The element of array `a` (named `name`) that the indices next name, which must be set.
+    pub fn element(
+        &mut self,
+        name: &str,
+        a: &std::cell::RefCell<super::value::Array>,
+        loc: &Loc,
+    ) -> Result<Value, LoadError> {
+        let index = self.indices()?;
+        let a = a.borrow();
+        let at = a.flat_index(&index).ok_or_else(|| {
+            loc.error(format!(
+                "index {index:?} is outside `{name}` of size {:?}",
+                a.dims
+            ))
+        })?;
+        a.items[at]
+            .clone()
+            .ok_or_else(|| loc.error(format!("`{name}{index:?}` is not set")))
     }
 
     /// An identifier's value, innermost scope first.
@@ -541,11 +570,7 @@ impl Parser {
             )));
         }
         // An array element: `#declare A[i][j] = …`.
-        let mut index = Vec::new();
-        while self.eat_symbol("[")? {
-            index.push(self.float()?);
-            self.expect_symbol("]")?;
-        }
+        let index = self.indices()?;
         self.expect_symbol("=")?;
         let value = self.declared_value()?;
         // The `;` after a number, vector or string (optional after an object).

@@ -60,6 +60,42 @@ pub struct Light {
     pub loc: Loc,
 }
 
+impl Light {
+    /// A point light of POV-Ray's defaults (a spotlight's angles 30° and 45°, tightness 0).
+    pub fn point(position: DVec3, color: DVec3, loc: &Loc) -> Self {
+        Self {
+            position,
+            color,
+            kind: LightKind::Point,
+            point_at: DVec3::Z,
+            spot: (30.0, 45.0, 0.0),
+            fade: None,
+            area: None,
+            shadowless: false,
+            loc: loc.clone(),
+        }
+    }
+}
+
+impl Camera {
+    /// POV-Ray's default camera (the right vector exactly 1.33 long, as POV-Ray's is).
+    pub fn default_at(loc: &Loc) -> Self {
+        Self {
+            orthographic: false,
+            location: DVec3::ZERO,
+            direction: DVec3::Z,
+            right: DVec3::new(1.33, 0.0, 0.0),
+            up: DVec3::Y,
+            sky: DVec3::Y,
+            angle: None,
+            look_at: None,
+            sized: false,
+            transform: DAffine3::IDENTITY,
+            loc: loc.clone(),
+        }
+    }
+}
+
 /// A light's kind.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightKind {
@@ -305,7 +341,9 @@ impl Parser {
                 // later does not change it), as POV-Ray's do.
                 "finish" => {
                     let f = self.finish_block()?;
-                    return Ok(Value::Finish(Rc::new(self.defaults.finish.overlaid(&f).resolved())));
+                    return Ok(Value::Finish(Rc::new(
+                        self.defaults.finish.overlaid(&f).resolved(),
+                    )));
                 }
                 "interior" => return Ok(Value::Interior(Rc::new(self.interior_block()?))),
                 "normal" => {
@@ -524,19 +562,7 @@ impl Parser {
 
     fn camera_block(&mut self, loc: &Loc) -> Result<Camera, LoadError> {
         self.expect_symbol("{")?;
-        let mut c = Camera {
-            orthographic: false,
-            location: DVec3::ZERO,
-            direction: DVec3::Z,
-            right: DVec3::new(1.33, 0.0, 0.0),
-            up: DVec3::Y,
-            sky: DVec3::Y,
-            angle: None,
-            look_at: None,
-            sized: false,
-            transform: DAffine3::IDENTITY,
-            loc: loc.clone(),
-        };
+        let mut c = Camera::default_at(loc);
         if let Some(Tok::Word(w)) = self.peek()?.map(|t| t.tok.clone())
             && let Some(Value::Camera(q)) = self.lookup(&w).cloned()
         {
@@ -544,15 +570,8 @@ impl Parser {
             c = (*q).clone();
         }
         loop {
-            let t = self.expect_any("`}`")?;
-            let w = match &t.tok {
-                Tok::Symbol("}") => return Ok(c),
-                Tok::Word(w) => w.clone(),
-                _ => {
-                    return Err(t
-                        .loc
-                        .error(format!("expected a camera's contents, found {}", t.tok)));
-                }
+            let Some((w, t)) = self.block_word("a camera's contents")? else {
+                return Ok(c);
             };
             match &*w {
                 "perspective" => c.orthographic = false,
@@ -621,33 +640,13 @@ impl Parser {
         } else {
             DVec3::ONE
         };
-        self.light_rest(Light {
-            position,
-            color,
-            kind: LightKind::Point,
-            point_at: DVec3::Z,
-            spot: (30.0, 45.0, 0.0),
-            fade: None,
-            area: None,
-            shadowless: false,
-            loc: loc.clone(),
-        })
+        self.light_rest(Light::point(position, color, loc))
     }
 
     fn light_rest(&mut self, mut l: Light) -> Result<Light, LoadError> {
         let mut fade_power = None;
         let mut fade_distance = None;
-        loop {
-            let t = self.expect_any("`}`")?;
-            let w = match &t.tok {
-                Tok::Symbol("}") => break,
-                Tok::Word(w) => w.clone(),
-                _ => {
-                    return Err(t
-                        .loc
-                        .error(format!("expected a light's contents, found {}", t.tok)));
-                }
-            };
+        while let Some((w, t)) = self.block_word("a light's contents")? {
             match &*w {
                 "color" | "colour" => l.color = self.color_body()?.v3(),
                 "rgb" | "srgb" => {
@@ -767,15 +766,8 @@ impl Parser {
     fn global_settings(&mut self, s: &mut PovScene) -> Result<(), LoadError> {
         self.expect_symbol("{")?;
         loop {
-            let t = self.expect_any("`}`")?;
-            let w = match &t.tok {
-                Tok::Symbol("}") => return Ok(()),
-                Tok::Word(w) => w.clone(),
-                _ => {
-                    return Err(t
-                        .loc
-                        .error(format!("expected a global setting, found {}", t.tok)));
-                }
+            let Some((w, t)) = self.block_word("a global setting")? else {
+                return Ok(());
             };
             match &*w {
                 "ambient_light" => s.ambient_light = Some(self.color_body()?.v3()),
@@ -909,31 +901,14 @@ impl Parser {
         let position = self.vec3()?;
         self.eat_symbol(",")?;
         let color = self.color_body()?.v3();
-        self.light_rest(Light {
-            position,
-            color,
-            kind: LightKind::Point,
-            point_at: DVec3::Z,
-            spot: (30.0, 45.0, 0.0),
-            fade: None,
-            area: None,
-            shadowless: false,
-            loc: loc.clone(),
-        })
+        self.light_rest(Light::point(position, color, loc))
     }
 
     /// Modifiers up to the object's `}`: transforms, texture, pigment, finish, interior, …
     fn modifiers(&mut self, o: &mut Object) -> Result<(), LoadError> {
         loop {
-            let t = self.expect_any("`}`")?;
-            let w = match &t.tok {
-                Tok::Symbol("}") => return Ok(()),
-                Tok::Word(w) => w.clone(),
-                _ => {
-                    return Err(t
-                        .loc
-                        .error(format!("expected an object's modifiers, found {}", t.tok)));
-                }
+            let Some((w, t)) = self.block_word("an object's modifiers")? else {
+                return Ok(());
             };
             match &*w {
                 "texture" => {

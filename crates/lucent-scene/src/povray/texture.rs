@@ -391,15 +391,8 @@ impl Parser {
             f = (*q).clone();
         }
         loop {
-            let t = self.expect_any("`}`")?;
-            let w = match &t.tok {
-                Tok::Symbol("}") => return Ok(f),
-                Tok::Word(w) => w.clone(),
-                _ => {
-                    return Err(t
-                        .loc
-                        .error(format!("expected a finish's contents, found {}", t.tok)));
-                }
+            let Some((w, t)) = self.block_word("a finish's contents")? else {
+                return Ok(f);
             };
             match &*w {
                 "ambient" => f.ambient = Some(self.color_body()?.v3()),
@@ -512,15 +505,8 @@ impl Parser {
             i = (*q).clone();
         }
         loop {
-            let t = self.expect_any("`}`")?;
-            let w = match &t.tok {
-                Tok::Symbol("}") => return Ok(i),
-                Tok::Word(w) => w.clone(),
-                _ => {
-                    return Err(t
-                        .loc
-                        .error(format!("expected an interior's contents, found {}", t.tok)));
-                }
+            let Some((w, t)) = self.block_word("an interior's contents")? else {
+                return Ok(i);
             };
             match &*w {
                 "ior" => i.ior = Some(self.float()?),
@@ -556,15 +542,8 @@ impl Parser {
             tex = (*q).clone();
         }
         loop {
-            let t = self.expect_any("`}`")?;
-            let w = match &t.tok {
-                Tok::Symbol("}") => return Ok(tex),
-                Tok::Word(w) => w.clone(),
-                _ => {
-                    return Err(t
-                        .loc
-                        .error(format!("expected a texture's contents, found {}", t.tok)));
-                }
+            let Some((w, t)) = self.block_word("a texture's contents")? else {
+                return Ok(tex);
             };
             match &*w {
                 "pigment" => tex.pigment = Some(Rc::new(self.pigment_block()?)),
