@@ -165,11 +165,13 @@ fn camera(
         }
         let dn = dir.normalize();
         // Left-handed: right = sky × direction.
-        let right = c.sky.cross(dn);
+        let mut right = c.sky.cross(dn);
         if right.length() < 1e-12 {
-            return Err(c
-                .loc
-                .error("the camera looks along its sky vector: which way is up is undefined"));
+            // POV-Ray keeps the right vector it has, and warns.
+            warnings.push(c.loc.warning(
+                "the camera looks along its sky vector: its right vector is kept, as POV-Ray does",
+            ));
+            right = c.right;
         }
         let handed = if c.up.cross(c.direction).dot(c.right) < 0.0 {
             -1.0
@@ -794,7 +796,8 @@ impl Convert<'_> {
                 if kids.is_empty() {
                     return Ok(None);
                 }
-                if kids.len() == 1 && *kind != CsgKind::Intersection {
+                // One part left (the others not read, with warnings): that part.
+                if kids.len() == 1 {
                     let mut only = kids.pop().map(Spanned::into_inner).expect("one child");
                     // One part: itself, placed by the combination.
                     let inner = only

@@ -270,6 +270,10 @@ impl Parser {
                     }
                 }
                 "turbulence" => p.shaping.turbulence = Some(self.vec3()?),
+                // Agate's own turbulence (lucent's agate has a fixed one).
+                "agate_turb" => {
+                    self.float()?;
+                }
                 "octaves" => p.shaping.octaves = Some(self.float()?),
                 "omega" => p.shaping.omega = Some(self.float()?),
                 "lambda" => p.shaping.lambda = Some(self.float()?),
