@@ -141,27 +141,11 @@ pub fn add_object(
                 "the triangle's vertices are collinear: it has no area",
             )?;
             let mesh = Mesh::new(v.to_vec(), vec![[0, 1, 2]]);
-            let surface = emissive.then(|| surface(&mesh, Affine3A::IDENTITY));
-            if let Some(m) = &motion {
-                moved_at_start(ctx, d, m, Affine3A::IDENTITY)?;
-            }
-            let id = ctx.builder.mesh(mesh, material);
-            if let Some(m) = motion {
-                ctx.builder.motion(id, m);
-            }
-            Ok(surface)
+            add_world_mesh(ctx, d, mesh, material, emissive, motion)
         }
         ObjectKind::Triangles => {
             let mesh = inline_mesh(ctx, d, table.clone())?;
-            let surface = emissive.then(|| surface(&mesh, Affine3A::IDENTITY));
-            if let Some(m) = &motion {
-                moved_at_start(ctx, d, m, Affine3A::IDENTITY)?;
-            }
-            let id = ctx.builder.mesh(mesh, material);
-            if let Some(m) = motion {
-                ctx.builder.motion(id, m);
-            }
-            Ok(surface)
+            add_world_mesh(ctx, d, mesh, material, emissive, motion)
         }
         _ => {
             let transform = placement(ctx, d, o.span())?;
@@ -237,6 +221,27 @@ pub fn add_object(
                 .flatten())
         }
     }
+}
+
+/// Adds a mesh given in world coordinates (a triangle's, a `triangles` object's), moving as
+/// `motion` says; its surface when `emissive`.
+fn add_world_mesh(
+    ctx: &mut Context,
+    d: &ObjectDesc,
+    mesh: Mesh,
+    material: u32,
+    emissive: bool,
+    motion: Option<lucent::motion::Motion>,
+) -> Result<Option<EmitterSurface>, LoadError> {
+    let surface = emissive.then(|| surface(&mesh, Affine3A::IDENTITY));
+    if let Some(m) = &motion {
+        moved_at_start(ctx, d, m, Affine3A::IDENTITY)?;
+    }
+    let id = ctx.builder.mesh(mesh, material);
+    if let Some(m) = motion {
+        ctx.builder.motion(id, m);
+    }
+    Ok(surface)
 }
 
 /// The mesh a `triangles` object writes out: every index within `positions`, `normals` one

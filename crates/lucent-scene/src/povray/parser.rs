@@ -710,16 +710,7 @@ impl Parser {
         }
         let frame = self.frames.len();
         let body = self.frames.last().map_or(0, |f| f.pos);
-        self.blocks.push((
-            Block::For {
-                frame,
-                body,
-                var,
-                to,
-                step,
-            },
-            frame,
-        ));
+        self.push_for(frame, body, var, to, step);
         Ok(())
     }
 
@@ -787,20 +778,23 @@ impl Parser {
                 self.set(var.clone(), Value::Float(i), false);
                 if (step > 0.0 && i <= to) || (step < 0.0 && i >= to) {
                     self.jump(frame, body, loc)?;
-                    self.blocks.push((
-                        Block::For {
-                            frame,
-                            body,
-                            var,
-                            to,
-                            step,
-                        },
-                        frame,
-                    ));
+                    self.push_for(frame, body, var, to, step);
                 }
                 Ok(())
             }
         }
+    }
+
+    /// Opens a `#for` loop's block: its body starts at `body` in frame `frame`.
+    fn push_for(&mut self, frame: usize, body: usize, var: Rc<str>, to: f64, step: f64) {
+        let block = Block::For {
+            frame,
+            body,
+            var,
+            to,
+            step,
+        };
+        self.blocks.push((block, frame));
     }
 
     fn turn(&mut self, loc: &Loc) -> Result<(), LoadError> {
