@@ -14,7 +14,7 @@ seconds="${1:-60}"
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(scene_toml obj mtl ply gltf mitsuba serialized film ies)
+    targets=(scene_toml obj mtl ply gltf mitsuba povray serialized film ies)
 fi
 data="${LUCENT_DATA:-$here/../../shared/data}"
 # The machine is shared: build with one job.

@@ -14,6 +14,7 @@ use std::sync::OnceLock;
 pub const OPTIONS: LoadOptions = LoadOptions {
     sandbox: true,
     limits: lucent_scene::Limits::DEFAULT,
+    image_size: None,
 };
 
 /// A triangle as OBJ, with a material library, texture coordinates and normals.

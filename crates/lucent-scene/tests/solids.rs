@@ -372,3 +372,76 @@ fn worst_block(a: &[[f32; 3]], b: &[[f32; 3]], w: usize) -> f32 {
     }
     worst
 }
+
+#[test]
+fn an_algebraic_paraboloid_cut_to_a_box_is_hit_where_its_equation_says() {
+    // y = x² + z² (x² + z² − y = 0), cut to y ≤ 4, moved up by 1.
+    let s = scene(
+        "[[object]]\ntype = \"algebraic\"\nterms = [[1, 2, 0, 0], [1, 0, 0, 2], [-1, 0, 1, 0]]\nbounds = [[-2, 0, -2], [2, 4, 2]]\ntranslate = [0, 1, 0]\nmaterial = \"m\"\n",
+    );
+    // Down at x = 1: the bowl at y = 1 + 1 = 2, its normal (−2x, 1, −2z) normalised, up and
+    // out.
+    let ray = Ray::new(Vec3::new(1.0, 8.0, 0.0), Vec3::NEG_Y);
+    let hit = s.intersect(&ray, &mut TraversalStats::default()).unwrap();
+    assert!((hit.t - 6.0).abs() < 1e-5, "{}", hit.t);
+    let n = Vec3::new(2.0, -1.0, 0.0).normalize();
+    assert!((hit.normal - n).length() < 1e-5, "{}", hit.normal);
+    // Beyond the box (x = 2.5) nothing, though the surface goes on.
+    let beside = Ray::new(Vec3::new(2.5, 20.0, 0.0), Vec3::NEG_Y);
+    assert!(
+        s.intersect(&beside, &mut TraversalStats::default())
+            .is_none()
+    );
+}
+
+#[test]
+fn a_plane_cuts_a_ball_in_a_combination() {
+    let s = scene(
+        "[[object]]\ntype = \"intersection\"\nmaterial = \"m\"\nchildren = [\n  { type = \"sphere\", center = [0, 0, 0], radius = 1 },\n  { type = \"plane\", point = [0, 0.5, 0], normal = [0, 1, 0] },\n]\n",
+    );
+    // From above: the flat cut at y = 0.5; from the side at y = 0.75, nothing.
+    let down = Ray::new(Vec3::new(0.2, 5.0, 0.0), Vec3::NEG_Y);
+    let hit = s.intersect(&down, &mut TraversalStats::default()).unwrap();
+    assert!((hit.t - 4.5).abs() < 1e-5 && (hit.normal - Vec3::Y).length() < 1e-5);
+    let side = Ray::new(Vec3::new(-5.0, 0.75, 0.0), Vec3::X);
+    assert!(s.intersect(&side, &mut TraversalStats::default()).is_none());
+}
+
+#[test]
+fn bad_algebraic_surfaces_are_refused_at_their_keys() {
+    let head = "[[object]]\ntype = \"algebraic\"\nmaterial = \"m\"\n";
+    let cases = [
+        (
+            format!("{head}terms = [[1, 2, 0, 0], [1, 0, 2, 0]]\n"),
+            "bad.toml:7:1",
+            "needs `bounds`",
+        ),
+        (
+            format!("{head}terms = [[1, 5, 0, 0]]\nbounds = [[-1, -1, -1], [1, 1, 1]]\n"),
+            "bad.toml:10:9",
+            "whole powers from 0 to 4",
+        ),
+        (
+            format!("{head}terms = [[1, 2, 2, 1]]\nbounds = [[-1, -1, -1], [1, 1, 1]]\n"),
+            "bad.toml:10:9",
+            "adding up to at most 4",
+        ),
+        (
+            format!("{head}terms = [[3, 0, 0, 0]]\nbounds = [[-1, -1, -1], [1, 1, 1]]\n"),
+            "bad.toml:10:9",
+            "degree 1 or more",
+        ),
+        (
+            format!("{head}terms = [[1, 1, 0, 0]]\nbounds = [[1, -1, -1], [1, 1, 1]]\n"),
+            "bad.toml:11:10",
+            "max above min",
+        ),
+    ];
+    for (objects, place, cause) in &cases {
+        let e = error(objects);
+        assert!(
+            e.starts_with(place) && e.contains(cause),
+            "{e}\nwanted {place} … {cause}"
+        );
+    }
+}

@@ -84,11 +84,13 @@ fn tree(
             inverse,
         });
     }
-    if !(super::solids::is_solid(d.kind) || d.kind == ObjectKind::Sphere) {
+    if !(super::solids::is_solid(d.kind)
+        || matches!(d.kind, ObjectKind::Sphere | ObjectKind::Plane))
+    {
         return Err(source.error(
             o.span(),
             format!(
-                "a {kind} cannot be part of a combination: only the exact solids, spheres and other combinations can"
+                "a {kind} cannot be part of a combination: only the exact solids, spheres, planes and other combinations can"
             ),
         ));
     }

@@ -28,6 +28,7 @@ fn takes(kind: MaterialKind) -> &'static [&'static str] {
         MaterialKind::Whitted => &[
             "ka",
             "ka_map",
+            "bump",
             "kd",
             "ks",
             "shininess",
@@ -129,6 +130,7 @@ pub(super) fn check_keys(m: &Spanned<MaterialDesc>, ctx: &Context) -> Result<(),
     let keys = [
         ("ka", at(d.ka.is_some())),
         ("ka_map", at(d.ka_map.is_some())),
+        ("bump", at(d.bump.is_some())),
         ("kd", at(d.kd.is_some())),
         ("ks", at(d.ks.is_some())),
         ("shininess", span(&d.shininess)),

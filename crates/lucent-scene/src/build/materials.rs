@@ -277,6 +277,7 @@ fn classic(m: &Spanned<MaterialDesc>, ctx: &mut Context) -> Result<Material, Loa
         kr: c(d.kr),
         kt: c(d.kt),
         ior: index_of_refraction(ctx, &d.ior, "ior", 1.0)?,
+        bump: d.bump.as_ref().map(|b| b.0.clone()),
         ..Material::default()
     })
 }

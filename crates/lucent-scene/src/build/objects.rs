@@ -334,6 +334,8 @@ pub(super) fn check_keys(
         ("hole", span(&d.hole)),
         ("radii", span(&d.radii)),
         ("exponents", span(&d.exponents)),
+        ("terms", span(&d.terms)),
+        ("bounds", span(&d.bounds)),
         ("major", span(&d.major)),
         ("minor", span(&d.minor)),
         ("children", span(&d.children)),

@@ -7,6 +7,7 @@ use super::{Context, RADIUS_RANGE, check, required};
 use crate::desc::{Finite, ObjectDesc, ObjectKind, Point};
 use crate::error::LoadError;
 use glam::{Affine3A, DAffine3, DVec3, Mat3, Vec3};
+use lucent::shape::solid::algebraic;
 use lucent::shape::{Solid, SolidShape};
 use std::ops::Range;
 use toml::Spanned;
@@ -22,6 +23,7 @@ pub(super) fn is_solid(kind: ObjectKind) -> bool {
             | ObjectKind::Torus
             | ObjectKind::Ellipsoid
             | ObjectKind::Superellipsoid
+            | ObjectKind::Algebraic
     )
 }
 
@@ -35,6 +37,7 @@ pub(super) fn keys(kind: ObjectKind) -> impl Iterator<Item = &'static str> {
         ObjectKind::Torus => &["major", "minor"],
         ObjectKind::Ellipsoid => &["center", "radii"],
         ObjectKind::Superellipsoid => &["exponents"],
+        ObjectKind::Algebraic => &["terms", "bounds"],
         _ => &[],
     };
     keys.iter().copied()
@@ -66,7 +69,13 @@ pub(super) fn add_solid(
             d.material.get_ref()
         ),
     )?;
-    let solid = solid_of(ctx, d, table, DAffine3::IDENTITY)?;
+    let solid = solid_of(ctx, d, table.clone(), DAffine3::IDENTITY)?;
+    check(
+        source,
+        table,
+        solid.is_bounded(),
+        "an algebraic surface alone needs `bounds` (or cut it with an intersection or a difference)",
+    )?;
     ctx.builder.solid(solid, material);
     Ok(())
 }
@@ -258,6 +267,32 @@ fn own_shape(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<OwnSh
                 origin: DVec3::ZERO,
             }
         }
+        ObjectKind::Algebraic => algebraic(source, table.clone(), d)?,
+        ObjectKind::Plane => {
+            // In a combination: the half-space behind the plane, `n·(x − p) < 0`.
+            let (at, _) = point("point", &d.point)?;
+            let n = required(source, table.clone(), kind, "normal", &d.normal)?;
+            let normal = n.get_ref().0.as_dvec3().normalize_or_zero();
+            check(
+                source,
+                n.span(),
+                normal != DVec3::ZERO,
+                "a plane's normal cannot be zero",
+            )?;
+            let terms = [
+                (normal.x, [1, 0, 0]),
+                (normal.y, [0, 1, 0]),
+                (normal.z, [0, 0, 1]),
+            ];
+            OwnShape {
+                shape: SolidShape::Algebraic {
+                    coefficients: algebraic::from_terms(&terms).unwrap_or([0.0; algebraic::TERMS]),
+                    bounds: None,
+                },
+                linear: glam::Mat3A::IDENTITY,
+                origin: at,
+            }
+        }
         ObjectKind::Ellipsoid => {
             let (center, _) = point("center", &d.center)?;
             let r = required(source, table.clone(), kind, "radii", &d.radii)?;
@@ -290,6 +325,58 @@ fn own_shape(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<OwnSh
                 origin: DVec3::ZERO,
             }
         }
+    })
+}
+
+/// An algebraic surface's own shape from its `terms` and `bounds`.
+fn algebraic(
+    source: &super::Source,
+    table: Range<usize>,
+    d: &ObjectDesc,
+) -> Result<OwnShape, LoadError> {
+    let t = required(source, table, "algebraic", "terms", &d.terms)?;
+    let mut terms = Vec::with_capacity(t.get_ref().len());
+    for &[k, i, j, l] in t.get_ref() {
+        let power = |x: f64| (x >= 0.0 && x.fract() == 0.0 && x <= 4.0).then_some(x as u8);
+        let powers = [power(i), power(j), power(l)];
+        let why = format!(
+            "an algebraic term is `[coefficient, i, j, k]` with whole powers from 0 to 4 adding up to at most 4 and a finite coefficient, got [{k}, {i}, {j}, {l}]"
+        );
+        let fine = k.is_finite() && powers.iter().all(Option::is_some);
+        let powers = powers.map(|p| p.unwrap_or(0));
+        check(
+            source,
+            t.span(),
+            fine && powers.iter().sum::<u8>() <= 4,
+            &why,
+        )?;
+        terms.push((k, powers));
+    }
+    let coefficients = algebraic::from_terms(&terms).unwrap_or([0.0; algebraic::TERMS]);
+    check(
+        source,
+        t.span(),
+        algebraic::degree(&coefficients) >= 1,
+        "an algebraic surface needs a term of degree 1 or more",
+    )?;
+    let bounds = match &d.bounds {
+        None => None,
+        Some(b) => {
+            let [lo, hi] = b.get_ref().map(|p| p.0);
+            let why = format!(
+                "`bounds` must be [min, max] with max above min on every axis, got {lo} and {hi}"
+            );
+            check(source, b.span(), lo.cmplt(hi).all(), &why)?;
+            Some([lo, hi])
+        }
+    };
+    Ok(OwnShape {
+        shape: SolidShape::Algebraic {
+            coefficients,
+            bounds,
+        },
+        linear: glam::Mat3A::IDENTITY,
+        origin: DVec3::ZERO,
     })
 }
 

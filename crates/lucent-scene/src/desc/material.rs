@@ -103,6 +103,9 @@ pub struct MaterialDesc {
     /// A texture multiplying `ka` (POV-Ray's ambient follows the pigment).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ka_map: Option<TextureDesc>,
+    /// A bump pattern bending the normal (POV-Ray's `normal`; no TOML form yet).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bump: Option<BumpDesc>,
     /// Diffuse coefficient: a colour or a texture.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kd: Option<TextureDesc>,
@@ -301,6 +304,7 @@ impl MaterialDesc {
             kind: None,
             ka: None,
             ka_map: None,
+            bump: None,
             kd: None,
             ks: None,
             shininess: None,
@@ -426,5 +430,26 @@ impl MaterialDesc {
             .into_iter()
             .flatten()
             .chain(spanned.into_iter().flatten().map(Spanned::get_mut))
+    }
+}
+
+/// A bump pattern, which only the POV-Ray reader makes: written to TOML or read from it, it is
+/// an error naming what is missing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BumpDesc(pub Box<lucent::texture::bump::Bump>);
+
+impl Serialize for BumpDesc {
+    fn serialize<S: serde::Serializer>(&self, _: S) -> Result<S::Ok, S::Error> {
+        Err(serde::ser::Error::custom(
+            "a POV-Ray `normal` (bump pattern) has no TOML form yet",
+        ))
+    }
+}
+
+impl<'de> Deserialize<'de> for BumpDesc {
+    fn deserialize<D: serde::Deserializer<'de>>(_: D) -> Result<Self, D::Error> {
+        Err(serde::de::Error::custom(
+            "`bump` has no TOML form yet: bump patterns come from POV-Ray's `normal`",
+        ))
     }
 }

@@ -17,7 +17,7 @@ pub mod values;
 
 pub use camera::CameraDesc;
 pub use light::{FalloffName, LightDesc, LightKind, MappingName, TexelsName};
-pub use material::{MaterialDesc, MaterialKind};
+pub use material::{BumpDesc, MaterialDesc, MaterialKind};
 pub use medium::MediumDesc;
 pub use motion::{KeyDesc, MotionDesc, OrbitDesc, OscillateDesc, RepeatName};
 pub use object::{ObjectDesc, ObjectKind};

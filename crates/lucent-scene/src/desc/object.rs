@@ -39,6 +39,10 @@ pub enum ObjectKind {
     Ellipsoid,
     /// `exponents` (`[e, n]`, POV-Ray's) in the cube `[-1, 1]³`, and a placement.
     Superellipsoid,
+    /// `terms` (`[coefficient, i, j, k]` for each `c·xⁱ·yʲ·zᵏ`, of degree ≤ 4): where the
+    /// polynomial is zero, inside where it is negative; `bounds` (`[min, max]`) to cut it to a
+    /// box, and a placement. Unbounded, it can only be part of a combination.
+    Algebraic,
     /// `children` (two or more), all their surfaces; a placement.
     Union,
     /// `children`: where all of them are; a placement.
@@ -68,6 +72,7 @@ impl ObjectKind {
             ObjectKind::Torus => "torus",
             ObjectKind::Ellipsoid => "ellipsoid",
             ObjectKind::Superellipsoid => "superellipsoid",
+            ObjectKind::Algebraic => "algebraic",
             ObjectKind::Union => "union",
             ObjectKind::Intersection => "intersection",
             ObjectKind::Difference => "difference",
@@ -136,6 +141,12 @@ pub struct ObjectDesc {
     /// Superellipsoid: `[e, n]`, the exponents across and along z.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub exponents: Option<Spanned<[Finite; 2]>>,
+    /// Algebraic: the polynomial's terms, `[coefficient, i, j, k]` each.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terms: Option<Spanned<Vec<[f64; 4]>>>,
+    /// Algebraic: the box it is cut to, `[min, max]`, before its placement.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bounds: Option<Spanned<[Point; 2]>>,
     /// Ellipsoid: its radii along x, y and z, each > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radii: Option<Spanned<Vector>>,
@@ -225,6 +236,8 @@ impl ObjectDesc {
             inverse: None,
             radii: None,
             exponents: None,
+            terms: None,
+            bounds: None,
             major: None,
             minor: None,
             point: None,

@@ -5,16 +5,20 @@
 //! (`docs/povray.md` lists each term and how it is mapped).
 
 use super::lexer::Loc;
+use super::normal::Normal;
 use super::scene::{Camera, CsgKind, Light, LightKind as PovLight, Object, PovScene, Shape};
 use super::texture::{Finish, Pattern, Pigment, Texture};
 use super::value::Vect;
 use crate::desc::{
-    CameraDesc, Color, FalloffName, Finite, ImageDesc, LightDesc, LightKind, MaterialDesc, Matrix,
-    ObjectDesc, ObjectKind, Point, RenderDesc, SceneDesc, TextureDesc, Vector, WorldDesc,
+    BumpDesc, CameraDesc, Color, FalloffName, Finite, ImageDesc, LightDesc, LightKind,
+    MaterialDesc, Matrix, ObjectDesc, ObjectKind, Point, RenderDesc, SceneDesc, TextureDesc,
+    Vector, WorldDesc,
 };
 use crate::error::LoadError;
-use glam::{DAffine3, DMat3, DMat4, DVec3, Vec3};
+use glam::{DAffine3, DMat4, DVec3, Vec3};
 use lucent::Rgb;
+use lucent::shape::solid::algebraic;
+use lucent::texture::bump::Bump;
 use lucent::texture::{Checker, PatternKind, Turbulence, Wave};
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -354,13 +358,9 @@ impl Convert<'_> {
             let loc = loc.clone();
             self.warn(&loc, "layered textures: lucent draws the first layer only");
         }
-        if let Some(loc) = tex.and_then(|t| t.normal.as_ref()) {
-            let loc = loc.clone();
-            self.warn(
-                &loc,
-                "a `normal` (bump pattern) is not read by lucent: the surface is smooth",
-            );
-        }
+        let bump = tex
+            .and_then(|t| t.normal.clone())
+            .and_then(|n| self.bump(&n));
         let interior = o.interior.as_ref();
         let ior = interior.and_then(|i| i.ior).unwrap_or(1.0);
         if let Some(i) = interior {
@@ -369,7 +369,8 @@ impl Convert<'_> {
                 self.warn(&loc, format!("{what} is not read by lucent"));
             }
         }
-        let m = self.whitted(pigment.as_deref(), &finish, ior, &o.loc);
+        let mut m = self.whitted(pigment.as_deref(), &finish, ior, &o.loc);
+        m.bump = bump;
         let key = format!(
             "{:?}",
             (
@@ -382,14 +383,14 @@ impl Convert<'_> {
                 &m.brilliance,
                 &m.kr,
                 &m.kt,
-                &m.ior
+                &m.ior,
+                &m.bump
             )
         );
         if let Some(name) = self.by_key.get(&key) {
             return name.clone();
         }
         let name = format!("pov{}", self.materials.len() + 1);
-        let mut m = m;
         m.name = span(name.clone());
         self.materials.push(span(m));
         self.by_key.insert(key, name.clone());
@@ -596,6 +597,87 @@ impl Convert<'_> {
         })))
     }
 
+    /// An `algebraic` object of `c` cut to `o`'s bounds; at the top level, where it has none
+    /// (or is open along an axis), to ±[`UNBOUNDED`] about its origin, with a warning.
+    fn cut_algebraic(&mut self, c: &algebraic::Coefficients, o: &Object, top: bool) -> ObjectDesc {
+        let far = [DVec3::splat(-UNBOUNDED), DVec3::splat(UNBOUNDED)];
+        let bounds = match o.bounds {
+            Some([lo, hi]) if top => {
+                if !(lo.is_finite() && hi.is_finite()) {
+                    self.warn(&o.loc, format!("an algebraic shape unbounded along an axis is cut there to ±{UNBOUNDED} about its origin"));
+                }
+                Some([lo.max(far[0]), hi.min(far[1])])
+            }
+            None if top => {
+                self.warn(
+                    &o.loc,
+                    format!("an unbounded algebraic shape is cut to the box ±{UNBOUNDED} about its origin (give it a `bounded_by` or `clipped_by`)"),
+                );
+                Some(far)
+            }
+            b => b,
+        };
+        algebraic_desc(c, bounds)
+    }
+
+    /// A normal's bump pattern; `None` (with a warning) where lucent cannot follow it.
+    fn bump(&mut self, n: &Normal) -> Option<BumpDesc> {
+        for (what, loc) in &n.unread {
+            let (what, loc) = (what.clone(), loc.clone());
+            self.warn(
+                &loc,
+                format!("{what} is not read by lucent: the surface is smooth there"),
+            );
+        }
+        let Pattern::Mapped(name, _, _) = &n.pattern.pattern else {
+            return None;
+        };
+        let name = name.clone();
+        if matches!(
+            &*name,
+            "crackle" | "quilted" | "cells" | "spiral1" | "spiral2" | "mandel"
+        ) {
+            let loc = n.pattern.loc.clone();
+            self.warn(
+                &loc,
+                format!("the normal pattern `{name}` is not read by lucent: the surface is smooth"),
+            );
+            return None;
+        }
+        let Some(TextureDesc::Pattern(mut p)) = self.texture_of(&n.pattern, &|_| Rgb::BLACK) else {
+            return None;
+        };
+        let mut amount = n.amount as f32;
+        match &*name {
+            // POV-Ray's own normal patterns bend by their vector noise or waves times the
+            // amount. Dents are deep where the noise is high: its cube.
+            // POV-Ray's vector noise is about half as steep as lucent's noise's slope.
+            "bumps" => amount *= 0.5,
+            "dents" => {
+                if n.pattern.shaping.wave.is_none() {
+                    p.wave = Wave::Poly(3.0);
+                }
+                amount *= 0.5;
+            }
+            // POV-Ray's wrinkles sum its octaves' vector noise, a smooth bending: lucent's
+            // sum of folded octaves is sharp-edged, so the noise's own slope stands in.
+            "wrinkles" => {
+                p.kind = PatternKind::Noise;
+                amount *= 0.5;
+            }
+            // Ripples and waves bend by at most their amount; a sine of frequency f rises by
+            // up to π·f per unit.
+            "ripples" | "waves" => amount /= std::f32::consts::PI * p.frequency.abs().max(1e-3),
+            // Any other pattern: POV-Ray sums its values at four points `accuracy` away
+            // (0.02) along a tetrahedron's corners, `Σ v(p + δ·dᵢ)·dᵢ ≈ (4/3)·δ·∇v`.
+            _ => amount *= 4.0 / 3.0 * lucent::texture::bump::ACCURACY,
+        }
+        Some(BumpDesc(Box::new(Bump {
+            pattern: *p,
+            amount,
+        })))
+    }
+
     /// [`Convert::texture_of`] without its warnings (given once, for the diffuse colour).
     fn texture_of_quiet(&mut self, p: &Pigment, lit: &dyn Fn(&Vect) -> Rgb) -> Option<TextureDesc> {
         let n = self.warnings.len();
@@ -688,23 +770,29 @@ impl Convert<'_> {
                 d.radii = Some(span(Vector(Vec3::splat(*r as f32))));
                 d
             }
-            Shape::Plane(n, dist) => {
+            Shape::Plane(n, dist) if top && o.bounds.is_none() => {
                 let mut d = ObjectDesc::new(ObjectKind::Plane, &material());
                 let nn = n.normalize();
                 let p = m.transform_point3(nn * *dist);
                 let normal = m.matrix3.inverse().transpose() * nn;
                 d.point = Some(span(Point(point(p))));
                 d.normal = Some(span(Vector(point(normal).normalize().as_vec3())));
-                if !top {
-                    self.warn(
-                        &o.loc,
-                        "a plane inside a combination is not read by lucent and is left out",
-                    );
-                    return Ok(None);
-                }
                 d.material = span(self.material(o, inherited));
                 return Ok(Some(vec![d]));
             }
+            Shape::Plane(n, dist) => {
+                // In a combination, or clipped: the half-space behind it, `n̂·x − dist < 0`.
+                let nn = n.normalize();
+                let terms = [
+                    (nn.x, [1, 0, 0]),
+                    (nn.y, [0, 1, 0]),
+                    (nn.z, [0, 0, 1]),
+                    (-*dist, [0, 0, 0]),
+                ];
+                let c = algebraic::from_terms(&terms).unwrap_or([0.0; algebraic::TERMS]);
+                self.cut_algebraic(&c, o, top)
+            }
+            Shape::Algebraic(c) => self.cut_algebraic(c, o, top),
             Shape::Box(a, b) => {
                 let mut d = ObjectDesc::new(ObjectKind::Box, &material());
                 // A flat box (POV-Ray draws it as its face) gets a sliver of thickness.
@@ -837,7 +925,47 @@ impl Convert<'_> {
                 "`no_shadow` is not read by lucent: the object casts shadows",
             );
         }
+        if top && d.children.is_some() && !bounded(&d) {
+            // A union or merge with a plane in it, say: infinite, as POV-Ray draws it; lucent's
+            // combinations must be bounded, so it is cut far away.
+            self.warn(
+                &o.loc,
+                format!("an unbounded combination is cut to the box ±{UNBOUNDED} about the origin"),
+            );
+            let mut far = ObjectDesc::new(ObjectKind::Box, "");
+            far.min = Some(span(Point(DVec3::splat(-UNBOUNDED))));
+            far.max = Some(span(Point(DVec3::splat(UNBOUNDED))));
+            let mut cut = ObjectDesc::new(ObjectKind::Intersection, d.material.get_ref());
+            cut.children = Some(span(vec![span(d), span(far)]));
+            d = cut;
+        }
         Ok(Some(vec![d]))
+    }
+}
+
+/// Whether a description's shape lies in a finite box, by the rules lucent's combinations
+/// follow: a union or merge when all its parts do, an intersection when any does, a
+/// difference when its first does; an inverted part, a plane or an uncut algebraic surface
+/// never.
+fn bounded(d: &ObjectDesc) -> bool {
+    if d.inverse == Some(true) {
+        return false;
+    }
+    let kids = || {
+        d.children
+            .iter()
+            .flat_map(|c| c.get_ref().iter().map(Spanned::get_ref))
+    };
+    match d.kind {
+        ObjectKind::Plane => false,
+        ObjectKind::Algebraic => d.bounds.as_ref().is_some_and(|b| {
+            let [lo, hi] = b.get_ref();
+            lo.0.is_finite() && hi.0.is_finite()
+        }),
+        ObjectKind::Union | ObjectKind::Merge => kids().all(bounded),
+        ObjectKind::Intersection => kids().any(bounded),
+        ObjectKind::Difference => kids().next().is_some_and(bounded),
+        _ => true,
     }
 }
 
@@ -870,6 +998,18 @@ fn mirror_shape(d: &mut ObjectDesc) {
         d.min = Some(span(Point(a.min(b))));
         d.max = Some(span(Point(a.max(b))));
     }
+    if let Some(terms) = &mut d.terms {
+        let mirrored = terms
+            .get_ref()
+            .iter()
+            .map(|&[k, i, j, l]| [if l % 2.0 == 1.0 { -k } else { k }, i, j, l])
+            .collect();
+        *terms = span(mirrored);
+    }
+    if let Some(b) = &d.bounds {
+        let [lo, hi] = b.get_ref().map(|p| point(p.0));
+        d.bounds = Some(span([Point(lo.min(hi)), Point(lo.max(hi))]));
+    }
     if d.kind == ObjectKind::Disc
         && let Some(n) = &d.normal
     {
@@ -877,5 +1017,19 @@ fn mirror_shape(d: &mut ObjectDesc) {
     }
 }
 
-#[allow(dead_code)]
-fn unused(_: DMat3) {}
+/// How far from its origin an algebraic shape without bounds is drawn alone.
+const UNBOUNDED: f64 = 1e4;
+
+/// An `algebraic` object of `c` (in POV-Ray's object space), cut to `bounds`.
+fn algebraic_desc(c: &algebraic::Coefficients, bounds: Option<[DVec3; 2]>) -> ObjectDesc {
+    let mut d = ObjectDesc::new(ObjectKind::Algebraic, "");
+    let terms = c
+        .iter()
+        .zip(algebraic::POWERS)
+        .filter(|(k, _)| **k != 0.0)
+        .map(|(k, [i, j, l])| [*k, f64::from(i), f64::from(j), f64::from(l)])
+        .collect();
+    d.terms = Some(span(terms));
+    d.bounds = bounds.map(|b| span(b.map(Point)));
+    d
+}

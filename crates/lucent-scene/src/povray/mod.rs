@@ -27,10 +27,12 @@
 //! What lucent reads but renders otherwise than POV-Ray is a warning naming the file and
 //! line; a syntax error names the file, line and column and what was expected.
 
+mod algebraic;
 mod convert;
 pub mod expr;
 mod functions;
 pub mod lexer;
+pub mod normal;
 pub mod parser;
 pub mod scene;
 mod shapes;

@@ -16,9 +16,10 @@ use std::rc::Rc;
 /// Deepest nesting of includes and macro calls: real scenes nest a few deep; the bound stops
 /// a macro that calls itself forever.
 const MAX_FRAMES: usize = 200;
-/// Most turns of all loops together: a loop whose condition never fails is an error, not a
-/// hang.
-const MAX_LOOP_TURNS: u64 = 50_000_000;
+/// Most loop turns and macro calls, all together: a loop whose condition never fails, or
+/// macros that call themselves twice over, are an error in about a second, not a hang (a
+/// turn costs about 1.6 µs). The sample scenes take at most a few hundred thousand.
+const MAX_STEPS: u64 = 1_000_000;
 
 /// Tokens being read: a file's, or a macro body's.
 struct Frame {
@@ -57,7 +58,8 @@ pub struct Parser {
     blocks: Vec<(Block, usize)>,
     peeked: Option<Token>,
     last: Loc,
-    loop_turns: u64,
+    /// Loop turns and macro calls so far.
+    steps: u64,
     /// Folders searched for `#include`s after the scene's own.
     pub library: Vec<PathBuf>,
     base_dir: PathBuf,
@@ -116,7 +118,7 @@ impl Parser {
                 line: 1,
                 column: 1,
             },
-            loop_turns: 0,
+            steps: 0,
             library: Vec::new(),
             base_dir: label.parent().map_or_else(PathBuf::new, Path::to_path_buf),
             options: *options,
@@ -798,10 +800,10 @@ impl Parser {
     }
 
     fn turn(&mut self, loc: &Loc) -> Result<(), LoadError> {
-        self.loop_turns += 1;
-        if self.loop_turns > MAX_LOOP_TURNS {
+        self.steps += 1;
+        if self.steps > MAX_STEPS {
             return Err(loc.error(format!(
-                "loops have turned more than {MAX_LOOP_TURNS} times: a condition that never fails?"
+                "loops and macro calls have run more than {MAX_STEPS} times: a loop whose condition never fails, or a macro calling itself without end?"
             )));
         }
         Ok(())
@@ -882,6 +884,7 @@ impl Parser {
                 args.len()
             )));
         }
+        self.turn(loc)?;
         self.push_frame(m.tokens.clone(), m.body.0, m.body.1, true)?;
         let scope = self.scopes.last_mut().expect("pushed above");
         for (p, a) in m.params.iter().zip(args) {

@@ -8,6 +8,7 @@ use super::texture::{Finish, Interior, Pigment, Texture};
 use super::value::{Value, Vect};
 use crate::error::LoadError;
 use glam::{DAffine3, DMat3, DVec3};
+use lucent::shape::solid::algebraic;
 use std::rc::Rc;
 
 /// A camera as written (POV-Ray's space); see `convert` for how its vectors combine.
@@ -126,6 +127,8 @@ pub enum Shape {
     Disc(DVec3, DVec3, f64, f64),
     /// `superellipsoid { <e, n> }`.
     Superellipsoid(f64, f64),
+    /// `quadric`, `cubic`, `quartic`, `poly` of degree ≤ 4: the polynomial's coefficients.
+    Algebraic(Box<algebraic::Coefficients>),
     /// Triangles (a `triangle`, `smooth_triangle`, `mesh`, `mesh2` or `polygon`): corners,
     /// normals (when smooth), and a texture per triangle when the mesh gives them.
     Mesh(Rc<Mesh>),
@@ -176,6 +179,9 @@ pub struct Object {
     pub inverse: bool,
     /// `no_shadow`.
     pub no_shadow: bool,
+    /// The box of its `bounded_by` or `clipped_by` in its own space (read for the algebraic
+    /// shapes, which have no box of their own).
+    pub bounds: Option<[DVec3; 2]>,
     /// Where it was written.
     pub loc: Loc,
 }
@@ -212,7 +218,7 @@ pub struct PovScene {
     pub assumed_gamma: Option<f64>,
 }
 
-const SHAPES: [&str; 19] = [
+const SHAPES: [&str; 23] = [
     "sphere",
     "plane",
     "box",
@@ -232,9 +238,13 @@ const SHAPES: [&str; 19] = [
     "object",
     "polygon",
     "light_source",
+    "quadric",
+    "cubic",
+    "quartic",
+    "poly",
 ];
 
-const UNREAD_SHAPES: [&str; 21] = [
+const UNREAD_SHAPES: [&str; 17] = [
     "blob",
     "height_field",
     "isosurface",
@@ -246,10 +256,6 @@ const UNREAD_SHAPES: [&str; 21] = [
     "parametric",
     "sphere_sweep",
     "bicubic_patch",
-    "quadric",
-    "quartic",
-    "poly",
-    "cubic",
     "ovus",
     "lemon",
     "fractal",
@@ -306,7 +312,13 @@ impl Parser {
                     }
                     match o.shape {
                         Shape::Light(l) => s.lights.push(Rc::new(placed_light(&l, &o.transform))),
-                        _ => s.objects.push(o),
+                        _ => {
+                            let most = self.options.limits.objects;
+                            if s.objects.len() as u64 >= most {
+                                return Err(t.loc.error(format!("the scene has more than {most} objects (`--limit objects=N` raises it)")));
+                            }
+                            s.objects.push(o)
+                        }
                     }
                 }
                 _ => {
@@ -346,10 +358,7 @@ impl Parser {
                     )));
                 }
                 "interior" => return Ok(Value::Interior(Rc::new(self.interior_block()?))),
-                "normal" => {
-                    self.skip_braces()?;
-                    return Ok(Value::Normal(loc));
-                }
+                "normal" => return Ok(Value::Normal(Rc::new(self.normal_block()?))),
                 "color_map" | "colour_map" => {
                     return Ok(Value::ColorMap(Rc::new(self.color_map()?)));
                 }
@@ -372,6 +381,7 @@ impl Parser {
                         interior: interior.map(Rc::new),
                         inverse: false,
                         no_shadow: false,
+                        bounds: None,
                         loc,
                     })));
                 }
@@ -838,6 +848,7 @@ impl Parser {
             interior: None,
             inverse: false,
             no_shadow: false,
+            bounds: None,
             loc: loc.clone(),
         };
         match &*w {
@@ -933,9 +944,9 @@ impl Parser {
                     tex.finish = tex.finish.overlaid(&f);
                 }
                 "normal" => {
-                    self.skip_braces()?;
+                    let n = self.normal_block()?;
                     Rc::make_mut(o.texture.get_or_insert_with(|| Rc::new(blank_texture())))
-                        .normal = Some(t.loc.clone());
+                        .normal = Some(Rc::new(n));
                 }
                 "interior" => o.interior = Some(Rc::new(self.interior_block()?)),
                 "material" => {
@@ -958,12 +969,7 @@ impl Parser {
                         self.float()?;
                     }
                 }
-                "bounded_by" | "clipped_by" => {
-                    if w.as_ref() == "clipped_by" {
-                        self.warn(&t.loc, "`clipped_by` is not read by lucent");
-                    }
-                    self.skip_braces()?;
-                }
+                "bounded_by" | "clipped_by" => self.bounds_block(o, &w, &t.loc)?,
                 "photons" | "radiosity" => self.skip_braces()?,
                 "interior_texture" => {
                     self.warn(&t.loc, "`interior_texture` is not read by lucent");
@@ -1000,6 +1006,10 @@ pub fn apply_transform(o: &mut Object, m: DAffine3) {
         t.transform = m * t.transform;
         if let Some(p) = &mut t.pigment {
             Rc::make_mut(p).transform = m * p.transform;
+        }
+        if let Some(n) = &mut t.normal {
+            let n = Rc::make_mut(n);
+            n.pattern.transform = m * n.pattern.transform;
         }
     }
 }

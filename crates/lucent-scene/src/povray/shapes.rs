@@ -102,6 +102,7 @@ impl Parser {
                 }))
             }
             "polygon" => self.polygon(loc)?,
+            "quadric" | "cubic" | "quartic" | "poly" => self.algebraic(w, loc)?,
             "mesh" => self.mesh(loc)?,
             "mesh2" => self.mesh2(loc)?,
             "union" | "intersection" | "difference" | "merge" => {

@@ -179,8 +179,8 @@ pub struct Texture {
     pub pigment: Option<Rc<Pigment>>,
     /// The finish (over the default's).
     pub finish: Finish,
-    /// A `normal` block's place, which lucent reads and does not apply.
-    pub normal: Option<Loc>,
+    /// Its normal perturbation.
+    pub normal: Option<Rc<super::normal::Normal>>,
     /// Transforms after the texture's start, applied to its pigment.
     pub transform: DAffine3,
     /// A texture layered under this one (read, not applied).
@@ -555,10 +555,7 @@ impl Parser {
                     let f = self.finish_block()?;
                     tex.finish = tex.finish.overlaid(&f);
                 }
-                "normal" => {
-                    self.skip_braces()?;
-                    tex.normal = Some(t.loc.clone());
-                }
+                "normal" => tex.normal = Some(Rc::new(self.normal_block()?)),
                 "material_map" | "texture_map" | "image_map" | "uv_mapping" | "checker"
                 | "hexagon" | "gradient" | "bozo" | "marble" | "wood" | "granite" | "agate"
                 | "spotted" | "brick" | "leopard" | "onion" | "radial" => {
@@ -571,6 +568,10 @@ impl Parser {
                         tex.transform = m * tex.transform;
                         if let Some(p) = &mut tex.pigment {
                             Rc::make_mut(p).transform = m * p.transform;
+                        }
+                        if let Some(n) = &mut tex.normal {
+                            let n = Rc::make_mut(n);
+                            n.pattern.transform = m * n.pattern.transform;
                         }
                     } else {
                         return Err(t.loc.error(format!("`{w}` is not part of a texture")));

@@ -73,8 +73,8 @@ pub enum Value {
     Pigment(Rc<Pigment>),
     /// A finish.
     Finish(Rc<Finish>),
-    /// A normal perturbation (read and not applied).
-    Normal(Loc),
+    /// A normal perturbation.
+    Normal(Rc<super::normal::Normal>),
     /// An interior.
     Interior(Rc<Interior>),
     /// A colour map.

@@ -20,7 +20,8 @@
 //!   outside, `N·I < 0`). On total internal reflection, `kt` joins `kr` on the mirror ray.
 //! - Smooth meshes shade with their interpolated vertex normal; the triangle's own normal still
 //!   decides which side a ray or a light is on, and takes over when the bent normal would send
-//!   a reflected or refracted ray through the surface.
+//!   a reflected or refracted ray through the surface. A material's bump pattern
+//!   ([`crate::texture::bump`], POV-Ray's `normal`) bends the normal the same way.
 //! - A surface's own emission `ke` (area lights; MTL's `Ke`) is added where its front side is
 //!   seen.
 //! - A ray's weight is the product of the `kr` and `kt` factors on its way from the camera; a
@@ -278,6 +279,8 @@ impl Whitted {
         } else {
             -hit.shading_normal
         };
+        // A bump pattern bends it (lighting, reflection and refraction alike).
+        let n = m.bump.as_ref().map_or(n, |b| b.bend(hit.point, n));
         let v = -i;
         let kd = scene.diffuse(m, hit);
         // The media on either side, for the rays that leave the surface.

@@ -374,6 +374,9 @@ pub struct Material {
     pub kt: Rgb,
     /// Index of refraction of the material's inside (the outside is taken as vacuum, 1).
     pub ior: f32,
+    /// A solid pattern bending the shading normal of the classic terms (POV-Ray's `normal`):
+    /// lighting, reflection and refraction all see the bent normal.
+    pub bump: Option<Box<crate::texture::bump::Bump>>,
     /// Radiance the surface emits from its front side (an area light); added to what it
     /// reflects.
     pub ke: Rgb,
@@ -414,6 +417,7 @@ impl Default for Material {
             kr: Rgb::BLACK,
             kt: Rgb::BLACK,
             ior: 1.0,
+            bump: None,
             ke: Rgb::BLACK,
             emission_map: None,
             opacity: None,

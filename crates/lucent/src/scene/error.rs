@@ -76,6 +76,11 @@ pub enum SceneError {
     /// A motion is given for a solid.
     #[error("object {0} is a {1}, which cannot move (only spheres and meshes can)")]
     SolidCannotMove(u32, &'static str),
+    /// A solid alone has no bounds.
+    #[error(
+        "object {0} is an unbounded {1}: give it bounds, or cut it with an intersection or a difference"
+    )]
+    SolidUnbounded(u32, &'static str),
     /// A sphere's motion scales unevenly.
     #[error("object {0} is a sphere: its motion must scale alike on every axis")]
     SphereScaleNotUniform(u32),

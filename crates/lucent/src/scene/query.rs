@@ -654,8 +654,12 @@ impl Scene {
             }
             Primitive::Csg(j) => {
                 let (csg, tag) = &self.csgs[j as usize];
-                let crossings = csg.crossings(ray, t_max);
-                crossings > 0 && blocker(tag.material, crossings)
+                if csg.all_wear(tag.material) {
+                    let crossings = csg.crossings(ray, t_max);
+                    crossings > 0 && blocker(tag.material, crossings)
+                } else {
+                    csg.blocking(ray, t_max, |material| blocker(material, 1))
+                }
             }
             Primitive::Instance(k) => {
                 let material = self.instances[k as usize].1.material;

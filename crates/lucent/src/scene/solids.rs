@@ -17,16 +17,17 @@ impl SceneBuilder {
         tag.object
     }
 
-    /// Adds a combination of solids (its leaves carry their own materials; `material` is the
-    /// combination's, which shadow rays see); returns its object id.
+    /// Adds a combination of solids (its leaves carry their own materials, which shadow rays
+    /// see where they cross them; `material` is the combination's as an object); returns its
+    /// object id.
     pub fn csg(&mut self, c: Csg, material: u32) -> u32 {
         let tag = self.next_tag(material);
         self.csgs.push((c, tag));
         tag.object
     }
 
-    /// What solids cannot be yet: area lights (their emission is not sampled) and moving; and a
-    /// combination's leaves must name materials that exist.
+    /// What solids cannot be yet: area lights (their emission is not sampled) and moving; alone,
+    /// they must be bounded; and a combination's leaves must name materials that exist.
     pub(super) fn check_solids(&self) -> Result<(), SceneError> {
         let lit = |material: u32| {
             self.material_at(material)
@@ -40,6 +41,9 @@ impl SceneBuilder {
             let materials = (0..c.leaves() as u32).map(|i| c.material(i)).collect();
             ("combination of solids", *tag, materials)
         });
+        if let Some((s, tag)) = self.solids.iter().find(|(s, _)| !s.is_bounded()) {
+            return Err(SceneError::SolidUnbounded(tag.object, s.shape.name()));
+        }
         for (name, tag, materials) in alone.chain(combined) {
             let count = self.material_count();
             if let Some(&material) = materials.iter().find(|&&m| m as usize >= count) {

@@ -11,6 +11,7 @@
 //! [`Texture::eval`], [`Texture::mean`] and [`Texture::uses_uv`], and its scene-file key in
 //! `lucent-scene` (`desc/texture.rs`).
 
+pub mod bump;
 pub mod checker;
 pub mod image;
 pub mod pattern;

@@ -100,10 +100,7 @@ pub struct Pattern {
 impl Pattern {
     /// The colour at world position `world`.
     pub fn eval(&self, world: Vec3) -> Rgb {
-        let mut p = self.to_pattern.transform_point3(world);
-        if let Some(t) = &self.turbulence {
-            p += turbulence(p, t) * t.amount;
-        }
+        let p = self.place(world);
         match self.kind {
             PatternKind::Checker => {
                 let c = (p + 1e-5).floor();
@@ -113,9 +110,23 @@ impl Pattern {
             PatternKind::Hexagon => return self.entry(hexagon(p)),
             _ => {}
         }
-        let v = self.value(p);
-        let v = v * self.frequency + self.phase;
-        let w = match self.wave {
+        lookup(&self.map, self.shaped(p))
+    }
+
+    /// `world` in the pattern's space, turbulence included.
+    fn place(&self, world: Vec3) -> Vec3 {
+        let p = self.to_pattern.transform_point3(world);
+        match &self.turbulence {
+            Some(t) => p + turbulence(p, t) * t.amount,
+            None => p,
+        }
+    }
+
+    /// The value at `p` (the pattern's space, turbulence applied) shaped by its frequency,
+    /// phase and wave: what the colour map is looked up with, in `[0, 1]`.
+    fn shaped(&self, p: Vec3) -> f32 {
+        let v = self.value(p) * self.frequency + self.phase;
+        match self.wave {
             Wave::Ramp => ramp(v),
             Wave::Triangle => {
                 let f = ramp(v);
@@ -128,8 +139,45 @@ impl Pattern {
                 f * f * (3.0 - 2.0 * f)
             }
             Wave::Poly(e) => ramp(v).powf(e),
+        }
+    }
+
+    /// The shaped value at world position `world` as a height (a block pattern's: its cell's
+    /// index over its colours).
+    pub fn height(&self, world: Vec3) -> f32 {
+        let p = self.place(world);
+        match self.kind {
+            PatternKind::Checker => {
+                let c = (p + 1e-5).floor();
+                (c.x + c.y + c.z).rem_euclid(2.0)
+            }
+            PatternKind::Hexagon => hexagon(p) as f32 / 2.0,
+            _ => self.shaped(p),
+        }
+    }
+
+    /// The gradient of [`Pattern::height`] at `world` in the pattern's own units, by central
+    /// differences `delta` apart in the pattern's space (POV-Ray's `accuracy`, 0.02 by
+    /// default), turned into the world by the transpose of the placement (as a normal turns)
+    /// with its length kept: a scaled pattern bends a normal as much as the unscaled one, as
+    /// POV-Ray's normals do.
+    pub fn slope(&self, world: Vec3, delta: f32) -> Vec3 {
+        let p = self.to_pattern.transform_point3(world);
+        let at = |q: Vec3| {
+            let q = match &self.turbulence {
+                Some(t) => q + turbulence(q, t) * t.amount,
+                None => q,
+            };
+            self.shaped(q)
         };
-        lookup(&self.map, w)
+        let g = Vec3::new(
+            at(p + Vec3::X * delta) - at(p - Vec3::X * delta),
+            at(p + Vec3::Y * delta) - at(p - Vec3::Y * delta),
+            at(p + Vec3::Z * delta) - at(p - Vec3::Z * delta),
+        ) / (2.0 * delta);
+        // h(w) = h'(A·w + b): ∇h = Aᵀ·∇h', whose direction is kept.
+        let turned = glam::Mat3::from(self.to_pattern.matrix3).transpose() * g;
+        turned.normalize_or_zero() * g.length()
     }
 
     fn entry(&self, i: usize) -> Rgb {

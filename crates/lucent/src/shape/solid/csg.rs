@@ -182,7 +182,8 @@ impl Csg {
             return None;
         }
         let Some(op) = node.op else {
-            return Some(self.leaves[node.children[0] as usize].0.bounds());
+            let solid = &self.leaves[node.children[0] as usize].0;
+            return solid.is_bounded().then(|| solid.bounds());
         };
         let mut boxes = node.children.iter().map(|&c| self.bounds_of(c));
         match op {
@@ -270,7 +271,7 @@ impl Csg {
         for (i, (solid, _, _)) in self.leaves.iter().enumerate() {
             let all: Crossings = solid.crossings_in(ray, f64::NEG_INFINITY, t_max);
             let behind = all.iter().filter(|c| c.0 <= 0.0).count();
-            inside[i] = behind % 2 == 1;
+            inside[i] = solid.starts_inside(ray, &all, behind, t_max);
             events.extend(all[behind..].iter().map(|&(t, part)| (t, i as u32, part)));
         }
         events.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
@@ -309,6 +310,19 @@ impl Csg {
             false
         });
         all
+    }
+
+    /// Walks the combination's surfaces along `ray` in `(0, t_max)`, nearest first, calling
+    /// `blocker` with each one's leaf's material until it returns `true`; returns whether it
+    /// did. A shadow ray sees the part it crosses (a clear sphere cutting a shape lets light
+    /// in, as in POV-Ray).
+    pub fn blocking(&self, ray: &Ray, t_max: f32, mut blocker: impl FnMut(u32) -> bool) -> bool {
+        self.walk(ray, t_max, |h| blocker(self.leaves[h.leaf as usize].1))
+    }
+
+    /// Whether every leaf wears `material`.
+    pub fn all_wear(&self, material: u32) -> bool {
+        self.leaves.iter().all(|l| l.1 == material)
     }
 
     /// How many of the combination's surfaces `ray` crosses in `(0, t_max)`.

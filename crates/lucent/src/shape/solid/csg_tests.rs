@@ -219,3 +219,35 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn an_unbounded_half_space_cuts_a_ball_into_a_dome() {
+    // y < 0.25 as the algebraic surface y − 0.25 = 0, unbounded, intersected with the unit
+    // ball: the combination takes the ball's box below the cut (the box stays the ball's).
+    let below = super::algebraic::from_terms(&[(1.0, [0, 1, 0]), (-0.25, [0, 0, 0])]).unwrap();
+    let half = SolidShape::Algebraic {
+        coefficients: below,
+        bounds: None,
+    };
+    let cut = || leaf(half, Affine3A::IDENTITY);
+    let ball = || leaf(SolidShape::Ellipsoid, Affine3A::IDENTITY);
+    let dome = Csg::new(&node(CsgOp::Intersection, vec![ball(), cut()])).unwrap();
+    assert!(dome.bounds().max.y <= 1.0 + 1e-5 && dome.bounds().min.y >= -1.0 - 1e-5);
+    // Down from above: the flat cut at y = 0.25, then the ball's bottom.
+    let down = Ray::new(Vec3::new(0.0, 5.0, 0.0), -Vec3::Y);
+    let hit = dome.nearest(&down, f32::INFINITY).unwrap();
+    assert!((hit.t - 4.75).abs() < 1e-12 && hit.leaf == 1, "{hit:?}");
+    assert_eq!(dome.crossings(&down, f32::INFINITY), 2);
+    let s = dome.surface(&down, &hit);
+    assert!((s.normal - Vec3::Y).length() < 1e-6, "{}", s.normal);
+    // Beside the cap, above the cut, nothing.
+    let beside = Ray::new(Vec3::new(-5.0, 0.5, 0.0), Vec3::X);
+    assert_eq!(dome.nearest(&beside, f32::INFINITY), None);
+    assert!(dome.contains(Vec3::new(0.0, 0.0, 0.0)) && !dome.contains(Vec3::new(0.0, 0.5, 0.0)));
+    // Alone, or in a union, it has no bounds.
+    assert!(!Solid::new(half, Affine3A::IDENTITY).unwrap().is_bounded());
+    assert_eq!(
+        Csg::new(&node(CsgOp::Union, vec![ball(), cut()])),
+        Err(CsgError::Unbounded)
+    );
+}

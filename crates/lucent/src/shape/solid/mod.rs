@@ -1,5 +1,5 @@
-//! Mathematical solids: boxes, cylinders, cones, discs, ellipsoids, superellipsoids and tori,
-//! each the canonical
+//! Mathematical solids: boxes, cylinders, cones, discs, ellipsoids, superellipsoids, tori and
+//! algebraic surfaces, each the canonical
 //! shape of its file placed in the world by an affine transform.
 //!
 //! A ray is taken into the solid's own space in `f64` and met there with the shape's equation
@@ -12,6 +12,7 @@
 //! Every crossing a ray makes is reported, in order ([`Solid::crossings`]), as constructive
 //! solid geometry will need; a closed solid's crossings alternate between entering and leaving.
 
+pub mod algebraic;
 pub mod cone;
 pub mod csg;
 #[cfg(test)]
@@ -56,6 +57,9 @@ fn cap_frame(p: DVec3) -> Frame {
 }
 
 /// Which canonical shape, and its own proportions.
+// An algebraic surface's 35 coefficients are held inline: a solid stays `Copy` and its
+// intersection reads no second allocation.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SolidShape {
     /// The cube `[-1, 1]³` ([`cuboid`]).
@@ -89,6 +93,15 @@ pub enum SolidShape {
         /// The tube's radius, > 0.
         minor: f64,
     },
+    /// Where a polynomial of degree ≤ 4 is zero ([`algebraic`]), found only within `bounds`
+    /// (its own space's box) when given: without them it is unbounded and only a
+    /// combination can hold it.
+    Algebraic {
+        /// The polynomial, in [`algebraic::POWERS`]' order.
+        coefficients: algebraic::Coefficients,
+        /// The box it is cut to, `[min, max]`.
+        bounds: Option<[DVec3; 2]>,
+    },
 }
 
 impl SolidShape {
@@ -102,12 +115,17 @@ impl SolidShape {
             SolidShape::Ellipsoid => "ellipsoid",
             SolidShape::Superellipsoid { .. } => "superellipsoid",
             SolidShape::Torus { .. } => "torus",
+            SolidShape::Algebraic { .. } => "algebraic surface",
         }
     }
 
-    /// The box about the shape in its own space.
+    /// The box about the shape in its own space; infinite for an unbounded one.
     fn bounds(&self) -> (DVec3, DVec3) {
         match *self {
+            SolidShape::Algebraic { bounds, .. } => match bounds {
+                Some([lo, hi]) => (lo, hi),
+                None => (DVec3::NEG_INFINITY, DVec3::INFINITY),
+            },
             SolidShape::Box => (DVec3::splat(-1.0), DVec3::ONE),
             SolidShape::Cylinder { .. } => (DVec3::new(-1.0, -1.0, 0.0), DVec3::ONE),
             SolidShape::Cone { radii, .. } => {
@@ -134,6 +152,9 @@ impl SolidShape {
                 superellipsoid::crossings(o, d, exponents, range, out)
             }
             SolidShape::Torus { minor } => torus::crossings(o, d, minor, range, out),
+            SolidShape::Algebraic { coefficients, .. } => {
+                algebraic::crossings(&coefficients, o, d, range, out)
+            }
         }
     }
 
@@ -147,6 +168,7 @@ impl SolidShape {
             SolidShape::Ellipsoid => p,
             SolidShape::Superellipsoid { exponents } => superellipsoid::normal(p, exponents),
             SolidShape::Torus { minor } => torus::normal(p, minor),
+            SolidShape::Algebraic { coefficients, .. } => algebraic::normal(&coefficients, p),
         }
     }
 
@@ -159,6 +181,7 @@ impl SolidShape {
             SolidShape::Ellipsoid => ellipsoid::frame(p),
             SolidShape::Superellipsoid { exponents } => superellipsoid::frame(p, exponents),
             SolidShape::Torus { .. } => torus::frame(p),
+            SolidShape::Algebraic { coefficients, .. } => algebraic::frame(&coefficients, p),
         }
     }
 
@@ -173,6 +196,7 @@ impl SolidShape {
             SolidShape::Ellipsoid => ellipsoid::contains(p),
             SolidShape::Superellipsoid { exponents } => superellipsoid::contains(p, exponents),
             SolidShape::Torus { minor } => torus::contains(p, minor),
+            SolidShape::Algebraic { coefficients, .. } => algebraic::contains(&coefficients, p),
         }
     }
 }
@@ -224,8 +248,18 @@ impl Solid {
         })
     }
 
-    /// The box about it in the world.
+    /// Whether it lies in a finite box (an algebraic surface given none, or one infinite on
+    /// some axis, does not).
+    pub fn is_bounded(&self) -> bool {
+        let (lo, hi) = self.shape.bounds();
+        lo.is_finite() && hi.is_finite()
+    }
+
+    /// The box about it in the world; all of space when it is unbounded.
     pub fn bounds(&self) -> Aabb {
+        if !self.is_bounded() {
+            return Aabb::new(Vec3::NEG_INFINITY, Vec3::INFINITY);
+        }
         let (lo, hi) = self.shape.bounds();
         let mut b = Aabb::EMPTY;
         for i in 0..8 {
@@ -278,7 +312,14 @@ impl Solid {
     /// `[t_lo, t_hi]`; `None` when it misses.
     fn range(&self, o: DVec3, d: DVec3, t_lo: f64, t_hi: f64) -> Option<[f64; 2]> {
         let (lo, hi) = self.shape.bounds();
-        let pad = (hi - lo).max_element() * 1e-9;
+        // Widened by the finite extents only (an algebraic surface's box may be infinite on
+        // some axes).
+        let size = (hi - lo).to_array();
+        let pad = size
+            .into_iter()
+            .filter(|x| x.is_finite())
+            .fold(0.0, f64::max)
+            * 1e-9;
         let (lo, hi) = (lo - pad, hi + pad);
         let (mut near, mut far) = (t_lo, t_hi);
         for axis in 0..3 {
@@ -327,6 +368,28 @@ impl Solid {
                 | SolidShape::Cylinder { open: true }
                 | SolidShape::Cone { open: true, .. }
         )
+    }
+
+    /// Whether `ray`'s origin lies inside, from the line's crossings `all` in `(−∞, t_max)`
+    /// of which the first `behind` lie at `t ≤ 0`. A closed bounded shape's crossings
+    /// alternate, so their count behind says it (robust for a ray starting on the surface);
+    /// an algebraic surface may be crossed an odd number of times along a whole line (a
+    /// paraboloid), so its sign is taken between the crossings about the origin.
+    pub fn starts_inside(&self, ray: &Ray, all: &Crossings, behind: usize, t_max: f64) -> bool {
+        let SolidShape::Algebraic { coefficients, .. } = &self.shape else {
+            return behind % 2 == 1;
+        };
+        let before = behind.checked_sub(1).map(|i| all[i].0);
+        let after = all.get(behind).map(|c| c.0);
+        let t = match (before, after) {
+            (Some(a), Some(b)) => 0.5 * (a + b),
+            (Some(a), None) if t_max.is_finite() => 0.5 * (a + t_max),
+            (Some(a), None) => a + a.abs().max(1.0),
+            (None, Some(b)) => b - b.abs().max(1.0),
+            (None, None) => 0.0,
+        };
+        let (o, d) = self.local(ray);
+        algebraic::contains(coefficients, o + d * t)
     }
 
     /// Whether `p` lies inside.
