@@ -333,6 +333,15 @@ fn mutated_mitsuba_files() {
     });
 }
 
+#[test]
+fn mutated_povray_files() {
+    fuzz(Format {
+        name: "povray",
+        samples: vec![POV_LANGUAGE.into(), POV_SHAPES.into()],
+        read: |bytes, dir| load(&input(dir, "fuzz.pov", bytes)),
+    });
+}
+
 /// The harness itself: mutations stay in bounds, the allocator sees a read's memory, and the
 /// samples read as written (a fuzz of samples that fail at once would test little).
 #[test]
@@ -389,6 +398,8 @@ fn the_harness_works() {
     input(&dir, "other.xml", MITSUBA_SCENE.as_bytes());
     loads("scene.xml", MITSUBA_SCENE.as_bytes());
     loads("include.xml", MITSUBA_INCLUDE.as_bytes());
+    loads("language.pov", POV_LANGUAGE.as_bytes());
+    loads("shapes.pov", POV_SHAPES.as_bytes());
 }
 
 /// Triangles of an OBJ sample, which must parse.

@@ -372,3 +372,10 @@ pub const MITSUBA_INCLUDE: &str = r#"<?xml version="1.0" encoding="utf-8"?>
     <shape type="sphere"><float name="radius" value="$r"/><bsdf type="conductor"/></shape>
 </scene>
 "#;
+
+/// A POV-Ray scene of the language: declarations, a macro, loops, conditionals (the fuzz
+/// target's seed).
+pub const POV_LANGUAGE: &str = include_str!("../../../../fuzz/seeds/povray/language.pov");
+/// A POV-Ray scene of shapes, CSG, an algebraic surface, patterns and lights (the fuzz
+/// target's seed).
+pub const POV_SHAPES: &str = include_str!("../../../../fuzz/seeds/povray/shapes.pov");
