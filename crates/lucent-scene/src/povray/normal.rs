@@ -115,23 +115,7 @@ impl Parser {
                     self.expect_symbol("}")?;
                     return Ok(n);
                 }
-                "turbulence" => p.shaping.turbulence = Some(self.vec3()?),
-                "octaves" => p.shaping.octaves = Some(self.float()?),
-                "omega" => p.shaping.omega = Some(self.float()?),
-                "lambda" => p.shaping.lambda = Some(self.float()?),
-                "frequency" => p.shaping.frequency = Some(self.float()?),
-                "phase" => p.shaping.phase = Some(self.float()?),
-                "ramp_wave" | "triangle_wave" | "sine_wave" | "scallop_wave" | "cubic_wave" => {
-                    p.shaping.wave = Some((w.clone(), 1.0));
-                }
-                "poly_wave" => {
-                    let e = if self.starts_value()? {
-                        self.float()?
-                    } else {
-                        1.0
-                    };
-                    p.shaping.wave = Some((w.clone(), e));
-                }
+                w if self.shaping_word(w, &mut p.shaping)? => {}
                 _ => {
                     self.push_back(t.clone());
                     match self.transform_item()? {

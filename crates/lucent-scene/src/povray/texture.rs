@@ -269,27 +269,11 @@ impl Parser {
                         self.skip_braces()?;
                     }
                 }
-                "turbulence" => p.shaping.turbulence = Some(self.vec3()?),
                 // Agate's own turbulence (lucent's agate has a fixed one).
                 "agate_turb" => {
                     self.float()?;
                 }
-                "octaves" => p.shaping.octaves = Some(self.float()?),
-                "omega" => p.shaping.omega = Some(self.float()?),
-                "lambda" => p.shaping.lambda = Some(self.float()?),
-                "frequency" => p.shaping.frequency = Some(self.float()?),
-                "phase" => p.shaping.phase = Some(self.float()?),
-                "ramp_wave" | "triangle_wave" | "sine_wave" | "scallop_wave" | "cubic_wave" => {
-                    p.shaping.wave = Some((w.clone(), 1.0));
-                }
-                "poly_wave" => {
-                    let e = if self.starts_value()? {
-                        self.float()?
-                    } else {
-                        1.0
-                    };
-                    p.shaping.wave = Some((w.clone(), e));
-                }
+                w if self.shaping_word(w, &mut p.shaping)? => {}
                 "warp" => self.skip_braces()?,
                 "quick_color" | "quick_colour" => {
                     self.color_body()?;
@@ -304,6 +288,32 @@ impl Parser {
                 }
             }
         }
+    }
+
+    /// Reads the shaping modifier `w` (its word read) into `shaping`: turbulence and its
+    /// octaves, the wave, frequency and phase; `false` when `w` is none of them.
+    pub fn shaping_word(&mut self, w: &str, shaping: &mut Shaping) -> Result<bool, LoadError> {
+        match w {
+            "turbulence" => shaping.turbulence = Some(self.vec3()?),
+            "octaves" => shaping.octaves = Some(self.float()?),
+            "omega" => shaping.omega = Some(self.float()?),
+            "lambda" => shaping.lambda = Some(self.float()?),
+            "frequency" => shaping.frequency = Some(self.float()?),
+            "phase" => shaping.phase = Some(self.float()?),
+            "ramp_wave" | "triangle_wave" | "sine_wave" | "scallop_wave" | "cubic_wave" => {
+                shaping.wave = Some((w.into(), 1.0));
+            }
+            "poly_wave" => {
+                let e = if self.starts_value()? {
+                    self.float()?
+                } else {
+                    1.0
+                };
+                shaping.wave = Some((w.into(), e));
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
     }
 
     /// The entries of `checker` or `hexagon`: colours or pigments, `n` of them at most

@@ -331,13 +331,7 @@ mod tests {
             (e * e, [0, 0, 0]),
         ])
         .unwrap();
-        let mut state = 12345u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = super::super::test_stream(12345);
         let mut hit = 0;
         for _ in 0..500 {
             let o = DVec3::new(next(), next(), next()) * 3.0;

@@ -32,6 +32,19 @@ use arrayvec::ArrayVec;
 use glam::{Affine3A, DAffine3, DMat3, DVec2, DVec3, Vec2, Vec3};
 use lucent_accel::{Aabb, Ray};
 
+/// A reproducible stream of numbers in `[-1, 1)` for the tests' random rays (a linear
+/// congruential generator's top bits).
+#[cfg(test)]
+pub(crate) fn test_stream(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
 /// Crossings of a line with a shape's surface: the ray parameter and which part of the surface
 /// (a box's face, a cylinder's side or cap). At most four for a torus, two elsewhere.
 pub type Crossings = ArrayVec<(f64, u8), 8>;

@@ -228,13 +228,7 @@ mod tests {
         // Random rays through convex superellipsoids: the golden-section search and a dense
         // sampling of the same run agree on every crossing (rays grazing within a millionth of
         // the run aside).
-        let mut state = 99u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = super::super::test_stream(99);
         let mut met = 0;
         for _ in 0..2000 {
             let shape = [0.05 + 0.975 * (next() + 1.0), 0.05 + 0.975 * (next() + 1.0)];
