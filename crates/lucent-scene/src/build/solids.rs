@@ -279,14 +279,9 @@ fn own_shape(ctx: &Context, d: &ObjectDesc, table: Range<usize>) -> Result<OwnSh
                 normal != DVec3::ZERO,
                 "a plane's normal cannot be zero",
             )?;
-            let terms = [
-                (normal.x, [1, 0, 0]),
-                (normal.y, [0, 1, 0]),
-                (normal.z, [0, 0, 1]),
-            ];
             OwnShape {
                 shape: SolidShape::Algebraic {
-                    coefficients: algebraic::from_terms(&terms).unwrap_or([0.0; algebraic::TERMS]),
+                    coefficients: algebraic::half_space(normal, 0.0),
                     bounds: None,
                 },
                 linear: glam::Mat3A::IDENTITY,

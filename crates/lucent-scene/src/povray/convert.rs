@@ -623,23 +623,20 @@ impl Convert<'_> {
     /// A normal's bump pattern; `None` (with a warning) where lucent cannot follow it.
     fn bump(&mut self, n: &Normal) -> Option<BumpDesc> {
         for (what, loc) in &n.unread {
-            let (what, loc) = (what.clone(), loc.clone());
             self.warn(
-                &loc,
+                loc,
                 format!("{what} is not read by lucent: the surface is smooth there"),
             );
         }
         let Pattern::Mapped(name, _, _) = &n.pattern.pattern else {
             return None;
         };
-        let name = name.clone();
         if matches!(
-            &*name,
+            &**name,
             "crackle" | "quilted" | "cells" | "spiral1" | "spiral2" | "mandel"
         ) {
-            let loc = n.pattern.loc.clone();
             self.warn(
-                &loc,
+                &n.pattern.loc,
                 format!("the normal pattern `{name}` is not read by lucent: the surface is smooth"),
             );
             return None;
@@ -648,7 +645,7 @@ impl Convert<'_> {
             return None;
         };
         let mut amount = n.amount as f32;
-        match &*name {
+        match &**name {
             // POV-Ray's own normal patterns bend by their vector noise or waves times the
             // amount. Dents are deep where the noise is high: its cube.
             // POV-Ray's vector noise is about half as steep as lucent's noise's slope.
@@ -782,15 +779,7 @@ impl Convert<'_> {
             }
             Shape::Plane(n, dist) => {
                 // In a combination, or clipped: the half-space behind it, `n̂·x − dist < 0`.
-                let nn = n.normalize();
-                let terms = [
-                    (nn.x, [1, 0, 0]),
-                    (nn.y, [0, 1, 0]),
-                    (nn.z, [0, 0, 1]),
-                    (-*dist, [0, 0, 0]),
-                ];
-                let c = algebraic::from_terms(&terms).unwrap_or([0.0; algebraic::TERMS]);
-                self.cut_algebraic(&c, o, top)
+                self.cut_algebraic(&algebraic::half_space(n.normalize(), *dist), o, top)
             }
             Shape::Algebraic(c) => self.cut_algebraic(c, o, top),
             Shape::Box(a, b) => {

@@ -115,7 +115,11 @@ impl Pattern {
 
     /// `world` in the pattern's space, turbulence included.
     fn place(&self, world: Vec3) -> Vec3 {
-        let p = self.to_pattern.transform_point3(world);
+        self.turbulent(self.to_pattern.transform_point3(world))
+    }
+
+    /// `p` (in the pattern's space) displaced by the turbulence, if any.
+    fn turbulent(&self, p: Vec3) -> Vec3 {
         match &self.turbulence {
             Some(t) => p + turbulence(p, t) * t.amount,
             None => p,
@@ -142,34 +146,14 @@ impl Pattern {
         }
     }
 
-    /// The shaped value at world position `world` as a height (a block pattern's: its cell's
-    /// index over its colours).
-    pub fn height(&self, world: Vec3) -> f32 {
-        let p = self.place(world);
-        match self.kind {
-            PatternKind::Checker => {
-                let c = (p + 1e-5).floor();
-                (c.x + c.y + c.z).rem_euclid(2.0)
-            }
-            PatternKind::Hexagon => hexagon(p) as f32 / 2.0,
-            _ => self.shaped(p),
-        }
-    }
-
-    /// The gradient of [`Pattern::height`] at `world` in the pattern's own units, by central
+    /// The gradient of the shaped value at `world` in the pattern's own units, by central
     /// differences `delta` apart in the pattern's space (POV-Ray's `accuracy`, 0.02 by
     /// default), turned into the world by the transpose of the placement (as a normal turns)
     /// with its length kept: a scaled pattern bends a normal as much as the unscaled one, as
     /// POV-Ray's normals do.
     pub fn slope(&self, world: Vec3, delta: f32) -> Vec3 {
         let p = self.to_pattern.transform_point3(world);
-        let at = |q: Vec3| {
-            let q = match &self.turbulence {
-                Some(t) => q + turbulence(q, t) * t.amount,
-                None => q,
-            };
-            self.shaped(q)
-        };
+        let at = |q: Vec3| self.shaped(self.turbulent(q));
         let g = Vec3::new(
             at(p + Vec3::X * delta) - at(p - Vec3::X * delta),
             at(p + Vec3::Y * delta) - at(p - Vec3::Y * delta),

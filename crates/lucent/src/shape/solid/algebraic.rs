@@ -3,10 +3,9 @@
 //! a paraboloid, a hyperboloid, a torus, a piriform…).
 //!
 //! Along a ray `P` is a polynomial of the same degree in the ray's parameter; its coefficients
-//! come from expanding each term `x^i·y^j·z^k` with `x = oₓ + s·uₓ` and so on, from a point on
-//! the line near where the surface is (the start of the part of the line in the shape's box,
-//! or the point nearest the origin when there is no box), so that a ray from far away keeps
-//! its digits. Its roots come from [`poly::roots_in`]. Such a surface may be unbounded (a
+//! come from expanding each term `x^i·y^j·z^k` with `x = oₓ + s·uₓ` and so on, about the
+//! point of the line nearest the shape's origin (kept within the part of the line asked
+//! for), so that a ray from far away keeps its digits. Its roots come from [`poly::roots_in`]. Such a surface may be unbounded (a
 //! plane, a paraboloid): then only a combination that cuts it (an intersection, a difference)
 //! or a box given with it can bound it.
 
@@ -75,6 +74,19 @@ pub fn from_pov(degree: u8, values: &[f64]) -> Option<Coefficients> {
         .map(|(&k, p)| (k, p))
         .collect();
     from_terms(&terms)
+}
+
+/// The half-space `n·x − offset < 0` (behind a plane of normal `n`), as a polynomial of
+/// degree 1.
+pub fn half_space(n: DVec3, offset: f64) -> Coefficients {
+    let terms = [
+        (n.x, [1, 0, 0]),
+        (n.y, [0, 1, 0]),
+        (n.z, [0, 0, 1]),
+        (-offset, [0, 0, 0]),
+    ];
+    // Powers of degree 1 are always among the terms.
+    from_terms(&terms).unwrap_or([0.0; TERMS])
 }
 
 /// The degree: the highest total power with a coefficient other than 0.
@@ -283,6 +295,7 @@ mod tests {
     fn a_plane_is_met_once_and_a_parallel_ray_never() {
         // y − 1 = 0.
         let c = from_terms(&[(1.0, [0, 1, 0]), (-1.0, [0, 0, 0])]).unwrap();
+        assert_eq!(half_space(DVec3::Y, 1.0), c);
         let got = all(
             &c,
             DVec3::ZERO,

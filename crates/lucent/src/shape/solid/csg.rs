@@ -104,6 +104,8 @@ pub struct Csg {
     /// Each leaf's solid, material and node.
     leaves: Vec<(Solid, u32, u32)>,
     bounds: Aabb,
+    /// The material every leaf wears, when they all wear one (shadow rays then see it once).
+    uniform: Option<u32>,
 }
 
 /// A visible crossing: where, of which leaf, on which part, and whether the leaf's outward
@@ -127,9 +129,12 @@ impl Csg {
             nodes: Vec::new(),
             leaves: Vec::new(),
             bounds: Aabb::EMPTY,
+            uniform: None,
         };
         csg.add(tree, None)?;
         csg.bounds = csg.bounds_of(0).ok_or(CsgError::Unbounded)?;
+        let first = csg.leaves.first().map(|l| l.1);
+        csg.uniform = first.filter(|&m| csg.leaves.iter().all(|l| l.1 == m));
         Ok(csg)
     }
 
@@ -320,9 +325,9 @@ impl Csg {
         self.walk(ray, t_max, |h| blocker(self.leaves[h.leaf as usize].1))
     }
 
-    /// Whether every leaf wears `material`.
+    /// Whether every leaf wears `material` (known from the build: asked per shadow ray).
     pub fn all_wear(&self, material: u32) -> bool {
-        self.leaves.iter().all(|l| l.1 == material)
+        self.uniform == Some(material)
     }
 
     /// How many of the combination's surfaces `ray` crosses in `(0, t_max)`.
